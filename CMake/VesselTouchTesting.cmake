@@ -1,0 +1,18 @@
+# vtouch_add_gtest(NAME <name> SOURCES <files...> LIBRARIES <targets...> [LABELS <labels...>])
+# Builds one GoogleTest executable and registers each TEST() with ctest (label 'unit' by default).
+include(GoogleTest)
+
+function(vtouch_add_gtest)
+  cmake_parse_arguments(ARG "" "NAME" "SOURCES;LIBRARIES;LABELS" ${ARGN})
+  if(NOT ARG_LABELS)
+    set(ARG_LABELS unit)
+  endif()
+  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBRARIES} GTest::gtest GTest::gtest_main)
+  vtouch_target_warnings(${ARG_NAME})
+  target_compile_definitions(${ARG_NAME} PRIVATE
+    VTOUCH_SHARED_DATA_DIR="${VESSELTOUCH_SHARED_DATA_DIR}")
+  gtest_discover_tests(${ARG_NAME}
+    PROPERTIES LABELS "${ARG_LABELS}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
