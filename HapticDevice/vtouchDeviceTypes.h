@@ -14,13 +14,13 @@ namespace vtouch
 enum class DeviceStatus : std::uint8_t
 {
   Ok = 0,
-  NotOpen,          ///< open() was not called or failed
-  Disconnected,     ///< the device went away (unplugged); reopen after re-plug
-  Unsupported,      ///< the device cannot do this (e.g. force on a position-only joystick)
-  InvalidArgument,  ///< NaN/Inf or otherwise unusable input (the device was commanded zero force)
-  IoError,          ///< a transport read/write failed
-  Timeout,          ///< no data in time
-  Fault             ///< safety fault (watchdog, limit); force is zero until cleared
+  NotOpen,         ///< open() was not called or failed
+  Disconnected,    ///< the device went away (unplugged); reopen after re-plug
+  Unsupported,     ///< the device cannot do this (e.g. force on a position-only joystick)
+  InvalidArgument, ///< NaN/Inf or otherwise unusable input (the device was commanded zero force)
+  IoError,         ///< a transport read/write failed
+  Timeout,         ///< no data in time
+  Fault            ///< safety fault (watchdog, limit); force is zero until cleared
 };
 
 const char* toString(DeviceStatus status);
@@ -29,27 +29,27 @@ const char* toString(DeviceStatus status);
 struct DeviceCapabilities
 {
   static constexpr int kNameLength = 128;
-  char name[kNameLength] = {};             ///< human-readable product name (NUL-terminated)
-  std::uint16_t vendorId = 0;              ///< USB vendor id, 0 when not a USB device
-  std::uint16_t productId = 0;             ///< USB product id, 0 when not a USB device
-  int sensedDof = 2;                       ///< position axes sensed (2: x,y; 3: x,y,z)
-  int actuatedDof = 2;                     ///< force axes rendered (0: input only)
-  Vec3 workspace_mm{ 100.0, 100.0, 0.0 };  ///< extent of the reachable box, per axis
-  double maxContinuousForce_N = 0.0;       ///< largest force the device may hold indefinitely
-  double maxStiffness_N_per_m = 0.0;       ///< largest stable stiffness at 1 kHz
-  double maxUpdateRate_Hz = 1000.0;        ///< fastest useful write rate
-  bool hasPressure = false;                ///< a pressure or z input feeds the force zones
-  int buttonCount = 0;                     ///< number of buttons reported in DeviceState::buttons
+  char name[kNameLength] = {};            ///< human-readable product name (NUL-terminated)
+  std::uint16_t vendorId = 0;             ///< USB vendor id, 0 when not a USB device
+  std::uint16_t productId = 0;            ///< USB product id, 0 when not a USB device
+  int sensedDof = 2;                      ///< position axes sensed (2: x,y; 3: x,y,z)
+  int actuatedDof = 2;                    ///< force axes rendered (0: input only)
+  Vec3 workspace_mm{ 100.0, 100.0, 0.0 }; ///< extent of the reachable box, per axis
+  double maxContinuousForce_N = 0.0;      ///< largest force the device may hold indefinitely
+  double maxStiffness_N_per_m = 0.0;      ///< largest stable stiffness at 1 kHz
+  double maxUpdateRate_Hz = 1000.0;       ///< fastest useful write rate
+  bool hasPressure = false;               ///< a pressure or z input feeds the force zones
+  int buttonCount = 0;                    ///< number of buttons reported in DeviceState::buttons
 };
 
 /// One timestamped sample of the device, in the device frame.
 struct DeviceState
 {
-  double timestamp_s = 0.0;     ///< steady-clock time of the sample, seconds
-  Vec3 position_Device_mm;      ///< handle position; z is 0 when not sensed
-  Vec3 velocity_Device_mm_per_s;///< estimated from a fixed-size history (never allocates)
-  double pressure = 0.0;        ///< normalized pressure/z in [0, 1]; 0 when not sensed
-  std::uint32_t buttons = 0;    ///< bit i set when button i is down
+  double timestamp_s = 0.0;      ///< steady-clock time of the sample, seconds
+  Vec3 position_Device_mm;       ///< handle position; z is 0 when not sensed
+  Vec3 velocity_Device_mm_per_s; ///< estimated from a fixed-size history (never allocates)
+  double pressure = 0.0;         ///< normalized pressure/z in [0, 1]; 0 when not sensed
+  std::uint32_t buttons = 0;     ///< bit i set when button i is down
 };
 
 } // namespace vtouch

@@ -10,8 +10,8 @@ namespace vtouch
 /// A 2-DOF (or richer) position input with 2D force output.
 ///
 /// Threading: open()/close() are called from a control thread; read()/write() from the haptic
-/// thread at up to 10 kHz. read()/write() never allocate, never hold a lock across I/O, never log and
-/// never throw: they return a status, and lastError() tells why afterwards.
+/// thread at up to 10 kHz. read()/write() never allocate, never hold a lock across I/O, never log
+/// and never throw: they return a status, and lastError() tells why afterwards.
 class HapticDevice
 {
 public:

@@ -1,5 +1,5 @@
-// Small fixed-size vectors shared by every layer. Plain aggregates: no allocation, trivially copyable,
-// safe to publish between threads by value.
+// Small fixed-size vectors shared by every layer. Plain aggregates: no allocation, trivially
+// copyable, safe to publish between threads by value.
 #pragma once
 
 #include <cmath>

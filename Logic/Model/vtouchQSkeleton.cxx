@@ -17,7 +17,9 @@ std::size_t QSkeleton::pointCount() const
 
 namespace
 {
-std::string checkEnd(const QSkeleton& s, const SkeletonPath& path, const PathEnd& end,
+std::string checkEnd(const QSkeleton& s,
+  const SkeletonPath& path,
+  const PathEnd& end,
   Junction::End which)
 {
   if (end.junction < 0)

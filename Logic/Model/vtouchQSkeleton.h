@@ -15,14 +15,14 @@ namespace vtouch
 enum class PointLabel : std::uint8_t
 {
   Ordinary = 0,
-  Bifurcation = 1,  ///< another path joins here (or this path ends on another path)
-  EndPoint = 2      ///< a free vessel end (tip or root)
+  Bifurcation = 1, ///< another path joins here (or this path ends on another path)
+  EndPoint = 2     ///< a free vessel end (tip or root)
 };
 
 struct SkeletonPoint
 {
-  Vec3 position_World_mm;        ///< world frame of the volume (origin + direction * index * spacing)
-  Vec3 tangent_World;            ///< unit tangent toward increasing point index
+  Vec3 position_World_mm; ///< world frame of the volume (origin + direction * index * spacing)
+  Vec3 tangent_World;     ///< unit tangent toward increasing point index
   double curvature_per_mm = 0.0; ///< 1/mm, from the smoothed curve
   double torsion_per_mm = 0.0;   ///< 1/mm, signed, from the smoothed curve
   double radius_mm = 0.0;        ///< local vessel radius
@@ -32,7 +32,7 @@ struct SkeletonPoint
 /// One end of a path: either free (a vessel end) or attached to a point of another path.
 struct PathEnd
 {
-  int junction = -1;  ///< index into QSkeleton::junctions, -1 when the end is free
+  int junction = -1; ///< index into QSkeleton::junctions, -1 when the end is free
 };
 
 struct SkeletonPath
@@ -47,7 +47,11 @@ struct SkeletonPath
 /// A loop closure is a junction too (two fronts met), so the network may have cycles.
 struct Junction
 {
-  enum class End : std::uint8_t { Head = 0, Tail = 1 };
+  enum class End : std::uint8_t
+  {
+    Head = 0,
+    Tail = 1
+  };
   int childPath = -1;
   End childEnd = End::Head;
   int parentPath = -1;

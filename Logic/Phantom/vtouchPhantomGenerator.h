@@ -6,7 +6,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <memory>
 
 namespace vtouch
 {
@@ -29,7 +28,7 @@ public:
   double totalLength_mm() const;
 
   /// Distance (mm) from a world point to the nearest vessel centerline and the radius there.
-  /// Exact for the analytic segments (computed on the fine sampling, error < 1e-3 voxel).
+  /// Computed on the fine sampling (chord error well below 1e-2 voxel). Brute force: for tests.
   double distanceToCenterline_mm(const Vec3& p_World_mm, double* radius_mm = nullptr) const;
 
   /// Fills a buffer of dimensions[0]*dimensions[1]*dimensions[2] voxels, x fastest.
@@ -37,16 +36,15 @@ public:
   bool fill(float* voxels, const std::function<bool(double)>& progress = {}) const;
   bool fill(std::uint16_t* voxels, const std::function<bool(double)>& progress = {}) const;
 
-  /// Intensity at one world point without noise (the analytic profile).
+  /// Intensity at one world point without noise and roughness: the brightest vessel profile
+  /// there (brute force over the fine sampling; for tests).
   double intensityAt(const Vec3& p_World_mm) const;
 
 private:
   PhantomSpec Spec;
   std::string Error;
   QSkeleton Centerline;
-  struct Index;
-  std::shared_ptr<const Index> SegmentIndex;  // spatial hash over centerline samples
-  template <typename T>
+  template<typename T>
   bool fillT(T* voxels, const std::function<bool(double)>& progress) const;
 };
 

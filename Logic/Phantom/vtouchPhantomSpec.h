@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace vtouch
 {
@@ -14,14 +15,14 @@ namespace vtouch
 /// objects of Yi & Hayward; the others cover bifurcations, trees, loops and a thin column.
 enum class PhantomShape : int
 {
-  Circle = 0,        ///< a ring in a plane tilted 60 deg from the view plane (a narrow oval on screen)
-  WindingLine = 1,   ///< a line oscillating in the x-z plane (edge-on from +z it shows cusps)
-  Helix = 2,         ///< a helix around the volume's z axis
-  StraightTube = 3,  ///< a straight tube along x
-  YBifurcation = 4,  ///< one trunk splitting into two branches
-  Tree = 5,          ///< a binary tree of depth TreeDepth (>= 3): 2^depth - 1 segments
-  LoopNetwork = 6,   ///< a ring with two inflow and two outflow vessels (circle-of-Willis-like)
-  Column = 7         ///< a 4x4-voxel square column through the whole z extent (thinning failure case)
+  Circle = 0, ///< a ring in a plane tilted 60 deg from the view plane (a narrow oval on screen)
+  WindingLine = 1,  ///< a line oscillating in the x-z plane (edge-on from +z it shows cusps)
+  Helix = 2,        ///< a helix around the volume's z axis
+  StraightTube = 3, ///< a straight tube along x
+  YBifurcation = 4, ///< one trunk splitting into two branches
+  Tree = 5,         ///< a binary tree of depth TreeDepth (>= 3): 2^depth - 1 segments
+  LoopNetwork = 6,  ///< a ring with two inflow and two outflow vessels (circle-of-Willis-like)
+  Column = 7 ///< a 4x4-voxel square column through the whole z extent (thinning failure case)
 };
 
 const char* toString(PhantomShape shape);
@@ -31,9 +32,9 @@ const char* toString(PhantomShape shape);
 struct PhantomSpec
 {
   PhantomShape shape = PhantomShape::Helix;
-  std::array<int, 3> dimensions{ 96, 96, 96 };          ///< voxels per axis (each >= 3)
-  std::array<double, 3> spacing_mm{ 1.0, 1.0, 1.0 };    ///< voxel size per axis (> 0, finite)
-  std::array<double, 3> origin_mm{ 0.0, 0.0, 0.0 };     ///< world position of voxel (0,0,0)
+  std::array<int, 3> dimensions{ 96, 96, 96 };       ///< voxels per axis (each >= 3)
+  std::array<double, 3> spacing_mm{ 1.0, 1.0, 1.0 }; ///< voxel size per axis (> 0, finite)
+  std::array<double, 3> origin_mm{ 0.0, 0.0, 0.0 };  ///< world position of voxel (0,0,0)
 
   /// Vessel radius as a fraction of N (the smallest physical side). Tree segments scale it down
   /// by TreeRadiusRatio per generation; the helix defaults follow the benchmark of issue 3.
@@ -46,17 +47,27 @@ struct PhantomSpec
   double helixPitchFraction = 0.25;
   double helixTurns = 3.0;
 
-  int treeDepth = 3;               ///< Tree generations (>= 1); 3 gives seven segments
-  double treeRadiusRatio = 0.8;    ///< child radius / parent radius in the tree
+  int treeDepth = 3;            ///< Tree generations (1..6); 3 gives seven segments
+  double treeRadiusRatio = 0.8; ///< child radius / parent radius in the tree
+  /// Optional explicit radius fraction per tree generation (overrides radiusFraction and
+  /// treeRadiusRatio when non-empty; e.g. {0.055, 0.045, 0.035}).
+  std::vector<double> treeRadiusFractions;
 
-  /// Intensity: background + (peak - background) * exp(-(d/r)^2 * ln 2 * 2) inside a smooth
-  /// cross-section (d = distance to the centerline, r = local radius; half maximum at d = r / sqrt2),
-  /// plus Gaussian noise. Like a CTA/MRA: bright vessels on a dark background.
+  /// Cross-section profile P(d/r) of a vessel, d = distance to the centerline, r = local radius.
+  /// Gaussian: P = 2^-(d/r)^2 (half maximum at the wall d = r, background beyond 3 r).
+  /// Flat: a contrast-filled lumen with a partial-volume edge, P = 0.5 erfc((d - r) / (0.5 voxel))
+  /// (also half maximum at the wall). Intensity = background + (peak - background) * P + noise.
+  enum class Profile : int
+  {
+    Gaussian = 0,
+    Flat = 1
+  };
+  Profile profile = Profile::Gaussian;
   double backgroundIntensity = 100.0;
   double peakIntensity = 1000.0;
-  double noiseStdDev = 0.0;        ///< standard deviation of additive Gaussian noise
-  std::uint32_t seed = 1;          ///< noise seed: same seed, same volume
-  double wallRoughness = 0.0;      ///< radius modulation amplitude as a fraction of the radius
+  double noiseStdDev = 0.0;   ///< standard deviation of additive Gaussian noise
+  std::uint32_t seed = 1;     ///< noise seed: same seed, same volume
+  double wallRoughness = 0.0; ///< radius modulation amplitude as a fraction of the radius
 
   /// Returns an empty string when the spec is usable, else a sentence saying what is wrong.
   std::string validate() const;
