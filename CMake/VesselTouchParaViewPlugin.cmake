@@ -1,0 +1,30 @@
+# Builds the plugin in Modules/ParaView the way ParaView expects (paraview_plugin_scan/build).
+# Build tree:  lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so
+#              lib/paraview-5.11/plugins/VesselTouch.xml   (the plugin configuration file)
+set(VESSELTOUCH_PLUGIN_SUBDIR "paraview-${ParaView_VERSION_MAJOR}.${ParaView_VERSION_MINOR}/plugins")
+
+# ParaView loads plugins as shared libraries; the project's own libraries above stay static
+# (position-independent) and are linked into the plugin.
+set(BUILD_SHARED_LIBS ON)
+
+paraview_plugin_scan(
+  PLUGIN_FILES "${PROJECT_SOURCE_DIR}/Modules/ParaView/paraview.plugin"
+  PROVIDES_PLUGINS _vtouch_plugins
+  ENABLE_BY_DEFAULT ON
+  HIDE_PLUGINS_FROM_CACHE ON)
+
+paraview_plugin_build(
+  PLUGINS ${_vtouch_plugins}
+  TARGET VesselTouchPlugins
+  RUNTIME_DESTINATION "${CMAKE_INSTALL_BINDIR}"
+  LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+  LIBRARY_SUBDIRECTORY "${VESSELTOUCH_PLUGIN_SUBDIR}"
+  PLUGINS_FILE_NAME "VesselTouch.xml"
+  ADD_INSTALL_RPATHS ON)
+
+set(VESSELTOUCH_PLUGIN_DIR
+  "${CMAKE_BINARY_DIR}/${CMAKE_INSTALL_LIBDIR}/${VESSELTOUCH_PLUGIN_SUBDIR}/VesselTouch"
+  CACHE INTERNAL "Folder of the built plugin")
+set(VESSELTOUCH_PLUGIN_CONFIG
+  "${CMAKE_BINARY_DIR}/${CMAKE_INSTALL_LIBDIR}/${VESSELTOUCH_PLUGIN_SUBDIR}/VesselTouch.xml"
+  CACHE INTERNAL "The built tree's plugin configuration file")

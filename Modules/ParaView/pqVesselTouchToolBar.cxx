@@ -1,0 +1,15 @@
+#include "pqVesselTouchToolBar.h"
+
+#include "pqVesselTouchShowMIPReaction.h"
+
+#include <QAction>
+
+pqVesselTouchToolBar::pqVesselTouchToolBar(QWidget* parentObject)
+  : QToolBar(tr("VesselTouch"), parentObject)
+{
+  this->setObjectName("VesselTouchToolBar");
+  QAction* mip = this->addAction(tr("MIP"));
+  mip->setObjectName("actionVesselTouchShowMIP");
+  mip->setToolTip(tr("Show the active image as a maximum-intensity projection"));
+  new pqVesselTouchShowMIPReaction(mip);
+}

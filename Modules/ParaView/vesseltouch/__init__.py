@@ -1,0 +1,13 @@
+"""VesselTouch from ParaView's Python shell and pvpython.
+
+Load the plugin first (``LoadPlugin(path, ns=globals())`` or the Plugin Manager), then::
+
+    import vesseltouch
+    phantom = VesselPhantom(Shape='Helix')
+    vesseltouch.ShowAsMIP(phantom)
+"""
+
+from .mip import ShowAsMIP
+from .info import version, build_info
+
+__all__ = ["ShowAsMIP", "version", "build_info"]

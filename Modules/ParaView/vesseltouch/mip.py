@@ -1,0 +1,50 @@
+"""Maximum-intensity projection of an image in a render view."""
+
+from paraview import simple
+
+# ParaView's Volume representation names only Composite, Isosurface and Slice blend modes;
+# maximum intensity is blend mode 1, set on the property itself.
+MAXIMUM_INTENSITY_BLEND = 1
+
+
+def _scalar_array(source):
+    info = source.GetDataInformation(0)
+    if info.GetDataSetType() != 6:  # VTK_IMAGE_DATA
+        raise ValueError("ShowAsMIP needs an image (vtkImageData), got %s"
+                         % info.GetDataSetTypeAsString())
+    if info.GetNumberOfPoints() == 0:
+        raise ValueError("ShowAsMIP: the image is empty (see the output messages)")
+    scalars = info.GetPointDataInformation().GetAttributeInformation(0)  # SCALARS
+    if scalars is None or not scalars.GetName():
+        raise ValueError("ShowAsMIP needs point scalars on the image")
+    return scalars.GetName(), scalars.GetComponentRange(0)
+
+
+def ShowAsMIP(source=None, view=None, port=0):
+    """Shows ``source`` (default: the active source) in ``view`` (default: the active render
+    view) as a MIP: Volume representation, blend mode 1, grey colour map and a linear opacity
+    ramp over the data range. Returns the representation."""
+    source = source or simple.GetActiveSource()
+    if source is None:
+        raise ValueError("ShowAsMIP: no source given and no active source")
+    view = view or simple.GetActiveViewOrCreate("RenderView")
+    source.UpdatePipeline()
+    name, (lo, hi) = _scalar_array(source)
+    rep = simple.Show(simple.OutputPort(source, port), view)
+    rep.SetRepresentationType("Volume")
+    rep.SMProxy.GetProperty("BlendMode").SetElement(0, MAXIMUM_INTENSITY_BLEND)
+    rep.UpdateVTKObjects()
+    simple.ColorBy(rep, ("POINTS", name))
+    lut = simple.GetColorTransferFunction(name)
+    lut.ApplyPreset("Grayscale", True)
+    lut.RescaleTransferFunction(lo, hi)
+    pwf = simple.GetOpacityTransferFunction(name)
+    pwf.Points = [lo, 0.0, 0.5, 0.0, hi, 1.0, 0.5, 0.0]
+    pwf.RescaleTransferFunction(lo, hi)
+    view.ResetCamera()
+    return rep
+
+
+def BlendMode(rep):
+    """The blend mode of a volume representation as an integer (1 = maximum intensity)."""
+    return rep.SMProxy.GetProperty("BlendMode").GetElement(0)
