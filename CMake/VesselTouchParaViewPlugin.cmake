@@ -20,7 +20,16 @@ paraview_plugin_build(
   LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
   LIBRARY_SUBDIRECTORY "${VESSELTOUCH_PLUGIN_SUBDIR}"
   PLUGINS_FILE_NAME "VesselTouch.xml"
+  INSTALL_HEADERS OFF
   ADD_INSTALL_RPATHS ON)
+
+# The extension download also carries an install note and, for reading, the Python and XML
+# sources that are embedded into the plugin.
+install(FILES "${PROJECT_SOURCE_DIR}/Docs/INSTALL-EXTENSION.md" DESTINATION . RENAME INSTALL.md)
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/Modules/ParaView/vesseltouch"
+  DESTINATION "${CMAKE_INSTALL_DATADIR}/VesselTouch/python" FILES_MATCHING PATTERN "*.py")
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/Modules/ParaView/ServerManager/"
+  DESTINATION "${CMAKE_INSTALL_DATADIR}/VesselTouch/ServerManager" FILES_MATCHING PATTERN "*.xml")
 
 set(VESSELTOUCH_PLUGIN_DIR
   "${CMAKE_BINARY_DIR}/${CMAKE_INSTALL_LIBDIR}/${VESSELTOUCH_PLUGIN_SUBDIR}/VesselTouch"

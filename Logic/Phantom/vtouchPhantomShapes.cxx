@@ -314,12 +314,14 @@ private:
     {
       return;
     }
-    // Children split +/- 35 deg about an axis that turns 90 deg each generation: a 3D tree.
+    // Children split +/- 35 deg about an axis that turns 60 deg about each child's direction per
+    // generation: a 3D tree whose branches rise and fall in depth, yet all stay visible in a MIP
+    // seen along z (a 90 deg turn would hide the third generation behind the second).
     const double angle = 35.0 * kPi / 180.0;
-    const Vec3 nextAxis = normalized(direction.cross(splitAxis));
     for (double sign : { -1.0, 1.0 })
     {
       const Vec3 childDirection = normalized(rotate(direction, splitAxis, sign * angle));
+      const Vec3 nextAxis = normalized(rotate(splitAxis, childDirection, sign * 60.0 * kPi / 180.0));
       this->treeBranch(id, end, childDirection, nextAxis, 0.7 * length, generation + 1);
     }
   }

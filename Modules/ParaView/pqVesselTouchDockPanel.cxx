@@ -17,6 +17,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QScrollArea>
+#include <QTimer>
 #include <QtDebug>
 
 pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
@@ -31,6 +32,7 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
   this->Info->setVersion("hidapi", vtkVesselTouchVersion::GetHIDAPIVersion());
 
   auto* scroll = new QScrollArea(this);
+  scroll->setObjectName("VesselTouchScroll");
   scroll->setWidgetResizable(true);
   scroll->setWidget(this->Info);
   this->setWidget(scroll);
@@ -40,6 +42,31 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
     this,
     &pqVesselTouchDockPanel::setActiveSource);
   this->setActiveSource(pqActiveObjects::instance().activeSource());
+
+  // ParaView adds plugin docks hidden and restores its saved window state after start-up, so the
+  // panel shows itself the first time a dataset becomes active (the user may close it afterwards
+  // like any other panel).
+  QTimer::singleShot(0, this, &pqVesselTouchDockPanel::revealOnce);
+}
+
+void pqVesselTouchDockPanel::revealOnce()
+{
+  if (this->Revealed)
+  {
+    return;
+  }
+  if (this->Source)
+  {
+    this->Revealed = true;
+  }
+  this->show();
+  this->raise();
+}
+
+void pqVesselTouchDockPanel::showEvent(QShowEvent* event)
+{
+  this->QDockWidget::showEvent(event);
+  this->writeReportIfRequested();
 }
 
 pqVesselTouchDockPanel::~pqVesselTouchDockPanel() = default;
@@ -51,6 +78,10 @@ void pqVesselTouchDockPanel::setActiveSource(pqPipelineSource* source)
     QObject::disconnect(this->Source, nullptr, this, nullptr);
   }
   this->Source = source;
+  if (source && !this->Revealed)
+  {
+    QTimer::singleShot(0, this, &pqVesselTouchDockPanel::revealOnce);
+  }
   if (source)
   {
     QObject::connect(

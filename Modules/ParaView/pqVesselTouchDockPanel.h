@@ -16,9 +16,14 @@ public:
   explicit pqVesselTouchDockPanel(QWidget* parent = nullptr);
   ~pqVesselTouchDockPanel() override;
 
+protected:
+  void showEvent(QShowEvent* event) override;
+
 private Q_SLOTS:
   void setActiveSource(pqPipelineSource* source);
   void updateDatasetInformation();
+  /// Shows the panel; the first time a dataset is active, then never again on its own.
+  void revealOnce();
 
 private:
   /// When VESSELTOUCH_GUI_REPORT names a file, writes what the panel shows there as JSON, so
@@ -27,6 +32,7 @@ private:
 
   qVesselTouchInfoWidget* Info = nullptr;
   QPointer<pqPipelineSource> Source;
+  bool Revealed = false;
   Q_DISABLE_COPY(pqVesselTouchDockPanel)
 };
 

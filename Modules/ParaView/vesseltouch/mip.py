@@ -7,8 +7,8 @@ from paraview import simple
 MAXIMUM_INTENSITY_BLEND = 1
 
 
-def _scalar_array(source):
-    info = source.GetDataInformation(0)
+def _scalar_array(source, port):
+    info = source.GetDataInformation(port)
     if info.GetDataSetType() != 6:  # VTK_IMAGE_DATA
         raise ValueError("ShowAsMIP needs an image (vtkImageData), got %s"
                          % info.GetDataSetTypeAsString())
@@ -21,7 +21,7 @@ def _scalar_array(source):
 
 
 def ShowAsMIP(source=None, view=None, port=0):
-    """Shows ``source`` (default: the active source) in ``view`` (default: the active render
+    """Shows output ``port`` of ``source`` (default: the active source) in ``view`` (default: the active render
     view) as a MIP: Volume representation, blend mode 1, grey colour map and a linear opacity
     ramp over the data range. Returns the representation."""
     source = source or simple.GetActiveSource()
@@ -29,7 +29,7 @@ def ShowAsMIP(source=None, view=None, port=0):
         raise ValueError("ShowAsMIP: no source given and no active source")
     view = view or simple.GetActiveViewOrCreate("RenderView")
     source.UpdatePipeline()
-    name, (lo, hi) = _scalar_array(source)
+    name, (lo, hi) = _scalar_array(source, port)
     rep = simple.Show(simple.OutputPort(source, port), view)
     rep.SetRepresentationType("Volume")
     rep.SMProxy.GetProperty("BlendMode").SetElement(0, MAXIMUM_INTENSITY_BLEND)

@@ -1,0 +1,65 @@
+"""Small helpers shared by the pvpython tests (imported from the test folder)."""
+
+import os
+import subprocess
+import sys
+
+
+class Check:
+    """Collects failures so a test reports every broken expectation, then exits non-zero."""
+
+    def __init__(self, name):
+        self.name = name
+        self.failures = []
+        self.count = 0
+
+    def true(self, condition, message):
+        self.count += 1
+        if not condition:
+            self.failures.append(message)
+            print("FAIL: " + message, flush=True)
+
+    def equal(self, actual, expected, message):
+        self.true(actual == expected, "%s: got %r, expected %r" % (message, actual, expected))
+
+    def near(self, actual, expected, tolerance, message):
+        self.true(abs(actual - expected) <= tolerance,
+                  "%s: got %r, expected %r +/- %r" % (message, actual, expected, tolerance))
+
+    def finish(self):
+        if self.failures:
+            print("%s: %d of %d checks failed" % (self.name, len(self.failures), self.count))
+            sys.exit(1)
+        print("%s: all %d checks passed" % (self.name, self.count))
+        if self.count == 0:
+            sys.exit("no check ran")
+
+
+def plugin_path():
+    path = os.environ.get("VESSELTOUCH_PLUGIN")
+    if not path or not os.path.exists(path):
+        sys.exit("VESSELTOUCH_PLUGIN does not name the built plugin: %r" % path)
+    return path
+
+
+def run_pvpython(code, env=None, timeout=120):
+    """Runs `code` in a fresh pvpython; returns (exit code, stdout + stderr)."""
+    full_env = dict(os.environ)
+    full_env.update(env or {})
+    result = subprocess.run([os.environ.get("VESSELTOUCH_PVPYTHON", "pvpython"), "-c", code],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=full_env,
+                            timeout=timeout, universal_newlines=True)
+    return result.returncode, result.stdout
+
+
+def image_statistics(png_path):
+    """(fraction of pixels brighter than 25 % grey, standard deviation of the grey level)."""
+    from paraview.vtk.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    reader = vtkPNGReader()
+    reader.SetFileName(png_path)
+    reader.Update()
+    image = reader.GetOutput()
+    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).astype(float)
+    grey = pixels[:, :3].mean(axis=1) if pixels.ndim == 2 else pixels
+    return float((grey > 64).mean()), float(grey.std())
