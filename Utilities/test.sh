@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Utilities/test.sh [--quick]
+# Installs what is missing, builds and runs the whole test suite:
+#   1. Release build with the plugin: unit (GoogleTest, QtTest), integration (pvpython) and gui
+#      (the real ParaView under Xvfb) tests;
+#   2. an ASan+UBSan build of the libraries and their unit tests;
+#   3. a TSan build of the threaded code (haptic loop, exchanges, device watchdog) and its tests;
+#   4. the libFuzzer targets of the HID parsers for a bounded time.
+# --quick runs step 1 only. Ends with the overall 'N passed, N failed' line.
+set -uo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+quick=0
+[[ "${1:-}" == "--quick" ]] && quick=1
+jobs=${VESSELTOUCH_JOBS:-$(nproc)}
+export CTEST_OUTPUT_ON_FAILURE=1
+
+"$root/Utilities/install-deps.sh" || exit 1
+
+passed=0
+failed=0
+status=0
+summary=()
+# run_ctest LABEL BUILD_DIR [ctest args...]: runs ctest and adds its counts to the totals.
+run_ctest() {
+  local label=$1 dir=$2
+  shift 2
+  local log="$dir/ctest-$label.log"
+  ctest --test-dir "$dir" -j "$jobs" --output-on-failure "$@" 2>&1 | tee "$log"
+  local rc=${PIPESTATUS[0]}
+  local line
+  line=$(grep -E "tests passed, [0-9]+ tests failed out of [0-9]+" "$log" | tail -n1)
+  local total fails
+  total=$(sed -E 's/.*out of ([0-9]+).*/\1/' <<<"$line")
+  fails=$(sed -E 's/.*, ([0-9]+) tests failed.*/\1/' <<<"$line")
+  if [[ -z "$line" || "$total" == "0" ]]; then
+    echo "test.sh: $label ran no test" >&2
+    status=1
+    summary+=("$label: no test ran")
+    return
+  fi
+  passed=$((passed + total - fails))
+  failed=$((failed + fails))
+  ((rc != 0)) && status=1
+  summary+=("$label: $((total - fails)) passed, $fails failed")
+}
+
+# 1. Release build with everything.
+if ! "$root/Utilities/build.sh" "$root/build"; then
+  echo "test.sh: the Release build failed" >&2
+  exit 1
+fi
+run_ctest release "$root/build"
+
+if ((!quick)); then
+  common=(-DVESSELTOUCH_BUILD_PLUGIN=OFF -DVESSELTOUCH_BUILD_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo)
+  # 2. Address and undefined-behaviour sanitizers on the unit tests.
+  if "$root/Utilities/build.sh" "$root/build-asan" "${common[@]}" "-DVESSELTOUCH_SANITIZER=address;undefined"; then
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      run_ctest asan-ubsan "$root/build-asan" -L unit
+  else
+    echo "test.sh: the ASan+UBSan build failed" >&2
+    status=1
+    summary+=("asan-ubsan: build failed")
+  fi
+  # 3. Thread sanitizer on the threaded code's tests (label 'threads').
+  if "$root/Utilities/build.sh" "$root/build-tsan" "${common[@]}" -DVESSELTOUCH_SANITIZER=thread; then
+    TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 run_ctest tsan "$root/build-tsan" -L threads
+  else
+    echo "test.sh: the TSan build failed" >&2
+    status=1
+    summary+=("tsan: build failed")
+  fi
+  # 4. Fuzzing the HID descriptor and input-report parsers for a bounded time.
+  if [[ -x "$root/Utilities/fuzz.sh" ]]; then
+    if "$root/Utilities/fuzz.sh"; then
+      passed=$((passed + 1))
+      summary+=("fuzz: passed")
+    else
+      failed=$((failed + 1))
+      status=1
+      summary+=("fuzz: FAILED")
+    fi
+  fi
+fi
+
+echo
+printf '%s\n' "${summary[@]}"
+echo "Total: $passed passed, $failed failed"
+exit $status
