@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -503,15 +504,20 @@ bool PhantomGenerator::fillT(T* voxels, const std::function<bool(double)>& progr
   const std::size_t slice = static_cast<std::size_t>(d[0]) * d[1];
   const Rasterizer rasterizer(spec, this->Centerline);
 
-  // The profile is accumulated in float slabs per thread, then turned into intensities + noise.
+  // Workers accumulate the profile in float slabs and turn them into intensities + noise; the
+  // calling thread only reports progress, so callbacks (e.g. VTK's UpdateProgress) stay on it.
   const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
   const int slabDepth = std::max(1, std::min(16, (d[2] + threads - 1) / threads));
   const int slabCount = (d[2] + slabDepth - 1) / slabDepth;
   std::atomic<int> nextSlab{ 0 };
   std::atomic<int> doneSlabs{ 0 };
   std::atomic<bool> aborted{ false };
+  if (progress && !progress(0.0))
+  {
+    return false;
+  }
 
-  auto work = [&](bool reportProgress)
+  auto work = [&]()
   {
     std::vector<float> profile(slice * slabDepth);
     for (;;)
@@ -538,22 +544,30 @@ bool PhantomGenerator::fillT(T* voxels, const std::function<bool(double)>& progr
         }
         voxels[n] = toVoxel<T>(v);
       }
-      const int done = doneSlabs.fetch_add(1) + 1;
-      if (reportProgress && progress && !progress(static_cast<double>(done) / slabCount))
-      {
-        aborted.store(true);
-      }
+      doneSlabs.fetch_add(1);
     }
   };
-  std::vector<std::thread> helpers;
-  for (int t = 1; t < threads; ++t)
+  std::vector<std::thread> workers;
+  for (int t = 0; t < threads; ++t)
   {
-    helpers.emplace_back(work, false);
+    workers.emplace_back(work);
   }
-  work(true); // the calling thread reports progress, so callbacks stay on the caller's thread
-  for (std::thread& t : helpers)
+  while (doneSlabs.load() < slabCount && !aborted.load())
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const int done = doneSlabs.load();
+    if (progress && done < slabCount && !progress(static_cast<double>(done) / slabCount))
+    {
+      aborted.store(true);
+    }
+  }
+  for (std::thread& t : workers)
   {
     t.join();
+  }
+  if (!aborted.load() && progress)
+  {
+    progress(1.0);
   }
   return !aborted.load();
 }

@@ -32,7 +32,9 @@ public:
   double distanceToCenterline_mm(const Vec3& p_World_mm, double* radius_mm = nullptr) const;
 
   /// Fills a buffer of dimensions[0]*dimensions[1]*dimensions[2] voxels, x fastest.
-  /// `progress` (may be empty) is called with values in [0,1]; returning false aborts (-> false).
+  /// `progress` (may be empty) is called on the calling thread with 0 first, then with the
+  /// fraction done while worker threads fill, and 1 at the end; returning false aborts (the call
+  /// then returns false and the buffer is partly filled).
   bool fill(float* voxels, const std::function<bool(double)>& progress = {}) const;
   bool fill(std::uint16_t* voxels, const std::function<bool(double)>& progress = {}) const;
 

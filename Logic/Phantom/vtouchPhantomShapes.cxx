@@ -321,7 +321,8 @@ private:
     for (double sign : { -1.0, 1.0 })
     {
       const Vec3 childDirection = normalized(rotate(direction, splitAxis, sign * angle));
-      const Vec3 nextAxis = normalized(rotate(splitAxis, childDirection, sign * 60.0 * kPi / 180.0));
+      const Vec3 nextAxis =
+        normalized(rotate(splitAxis, childDirection, sign * 60.0 * kPi / 180.0));
       this->treeBranch(id, end, childDirection, nextAxis, 0.7 * length, generation + 1);
     }
   }

@@ -9,5 +9,6 @@ Load the plugin first (``LoadPlugin(path, ns=globals())`` or the Plugin Manager)
 
 from .mip import ShowAsMIP
 from .info import version, build_info
+from .scene import OpenDefaultScene, DEFAULT_PHANTOM
 
-__all__ = ["ShowAsMIP", "version", "build_info"]
+__all__ = ["ShowAsMIP", "OpenDefaultScene", "DEFAULT_PHANTOM", "version", "build_info"]

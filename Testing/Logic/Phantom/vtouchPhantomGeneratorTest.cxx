@@ -280,8 +280,26 @@ TEST(PhantomGenerator, ColumnIsFourByFourVoxels)
 TEST(PhantomGenerator, AbortFromProgressStopsFilling)
 {
   PhantomGenerator g(smallSpec(PhantomShape::Helix));
-  std::vector<float> v(64 * 64 * 64);
+  std::vector<float> v(64 * 64 * 64, -1.0f);
   int calls = 0;
-  EXPECT_FALSE(g.fill(v.data(), [&](double) { return ++calls < 2; }));
-  EXPECT_GE(calls, 2);
+  EXPECT_FALSE(g.fill(v.data(), [&](double) { return ++calls > 1; }));
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(v[0], -1.0f); // aborted before any worker started
+}
+
+TEST(PhantomGenerator, ProgressRunsFromZeroToOne)
+{
+  PhantomGenerator g(smallSpec(PhantomShape::Tree));
+  std::vector<float> v(64 * 64 * 64);
+  std::vector<double> seen;
+  EXPECT_TRUE(g.fill(v.data(),
+    [&](double f)
+    {
+      seen.push_back(f);
+      return true;
+    }));
+  ASSERT_GE(seen.size(), 2u);
+  EXPECT_EQ(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
 }
