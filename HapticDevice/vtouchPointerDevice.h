@@ -1,0 +1,110 @@
+// A device for people with no haptic hardware: the host's mouse moves a cursor, and forces are
+// rendered as pseudo-haptics by modulating the cursor's control/display gain.
+//
+// Lécuyer A., Coquillart S., Kheddar A., Richard P., Coiffet P. (2000), "Pseudo-haptic feedback:
+// can isometric input devices simulate force feedback?", Proc. IEEE Virtual Reality 2000, 83-90.
+// A cursor that slows down where a force resists the motion is perceived as friction or a slope
+// to climb; one that speeds up where the force assists, as descending.
+#pragma once
+
+#include "vtouchHapticDevice.h"
+#include "vtouchVelocityEstimator.h"
+
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+
+namespace vtouch
+{
+
+/// Parameters of a PointerDevice.
+struct PointerDeviceParameters
+{
+  /// Cursor box, mm (device frame centred on 0). Default 160 x 120.
+  Vec2 workspace_mm{ 160.0, 120.0 };
+  /// Gain change per newton of force along the motion, 1/N: gain = 1 + k * (F . direction).
+  /// Default 0.3 /N: a 2 N force against the motion moves the cursor at 0.4x the mouse speed.
+  double gainPerNewton_per_N = 0.3;
+  /// Gain bounds. Defaults 0.2 (never freezes) and 2.0.
+  double minimumGain = 0.2;
+  double maximumGain = 2.0;
+  /// Pressure added per wheel step. Default 0.1.
+  double pressurePerWheelStep = 0.1;
+  /// Virtual force limit reported in the capabilities, N. Default 3.
+  double maxContinuousForce_N = 3.0;
+};
+
+/// The host (GUI thread) feeds the mouse; the haptic thread reads the displayed cursor and writes
+/// forces; the GUI reads back the cursor and the force to draw them. Host setters and getters are
+/// thread-safe; read()/write() belong to the haptic thread and never block on the host.
+class PointerDevice : public HapticDevice
+{
+public:
+  explicit PointerDevice(const PointerDeviceParameters& parameters = PointerDeviceParameters{});
+
+  // --- Host side (any thread) ---
+  /// Mouse position mapped into the device frame by the view binding, mm.
+  void setPointerPosition(const Vec2& pointer_Device_mm);
+  /// Pressure while a modifier (e.g. Shift) is held: 1 when pressed. Overrides the wheel level.
+  void setModifierPressed(bool pressed);
+  /// Mouse wheel: each step adds pressurePerWheelStep (negative steps remove), clamped to [0, 1].
+  void addWheelSteps(int steps);
+  /// Mouse buttons, bit i for button i.
+  void setButtons(std::uint32_t buttons);
+  /// Puts the cursor back under the pointer (e.g. when the pointer re-enters the view).
+  void recenter();
+  /// The cursor to draw, mm (device frame).
+  Vec2 displayedCursor_Device_mm() const;
+  /// The last force written, N, for an on-screen arrow.
+  Vec3 displayedForce_Device_N() const;
+  /// The control/display gain used at the last read().
+  double currentGain() const { return this->Gain.load(std::memory_order_relaxed); }
+
+  // --- HapticDevice (haptic thread) ---
+  DeviceStatus open() override;
+  void close() override;
+  bool isOpen() const override { return this->Open.load(); }
+  const DeviceCapabilities& capabilities() const override { return this->Capabilities; }
+  /// The displayed cursor is the position: the haptic loop must feel what the user sees.
+  DeviceStatus read(DeviceState& state) override;
+  DeviceStatus write(const Vec3& force_Device_N) override;
+  const char* lastError() const override { return this->LastError; }
+
+private:
+  struct HostInput
+  {
+    Vec2 pointer_mm;
+    double pressure = 0.0;
+    std::uint32_t buttons = 0;
+    std::uint64_t recenter = 0;
+  };
+  HostInput loadHost() const;
+
+  PointerDeviceParameters Parameters;
+  DeviceCapabilities Capabilities;
+  std::atomic<bool> Open{ false };
+  const char* LastError = "";
+
+  // Host -> haptic: a seqlock (one writer at a time under HostMutex; readers never block).
+  std::mutex HostMutex;
+  std::atomic<std::uint32_t> HostSequence{ 0 };
+  std::atomic<double> PointerX{ 0.0 }, PointerY{ 0.0 };
+  std::atomic<double> WheelPressure{ 0.0 };
+  std::atomic<bool> Modifier{ false };
+  std::atomic<std::uint32_t> Buttons{ 0 };
+  std::atomic<std::uint64_t> RecenterRequests{ 0 };
+
+  // Haptic -> host.
+  std::atomic<double> CursorX{ 0.0 }, CursorY{ 0.0 };
+  std::atomic<double> ForceX{ 0.0 }, ForceY{ 0.0 }, ForceZ{ 0.0 };
+  std::atomic<double> Gain{ 1.0 };
+
+  // Haptic thread only.
+  Vec2 Cursor_mm;
+  Vec2 LastPointer_mm;
+  std::uint64_t SeenRecenter = 0;
+  Vec3 Force_N;
+  VelocityEstimator Velocity;
+};
+
+} // namespace vtouch

@@ -1,0 +1,132 @@
+#include "vtouchPointerDevice.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <thread>
+
+namespace
+{
+using vtouch::DeviceState;
+using vtouch::DeviceStatus;
+using vtouch::PointerDevice;
+using vtouch::Vec2;
+using vtouch::Vec3;
+
+/// Moves the mouse 10 mm to the right in 1 mm steps under a constant force; returns the cursor x.
+double cursorAfterMoveRight(const Vec3& force)
+{
+  PointerDevice device;
+  device.setPointerPosition(Vec2{ 0.0, 0.0 });
+  EXPECT_EQ(device.open(), DeviceStatus::Ok);
+  DeviceState s;
+  for (int i = 1; i <= 10; ++i)
+  {
+    device.write(force);
+    device.setPointerPosition(Vec2{ static_cast<double>(i), 0.0 });
+    device.read(s);
+  }
+  EXPECT_DOUBLE_EQ(device.displayedCursor_Device_mm().x, s.position_Device_mm.x);
+  return s.position_Device_mm.x;
+}
+
+TEST(PointerDevice, FollowsMouseExactlyWhenNoForce)
+{
+  EXPECT_DOUBLE_EQ(cursorAfterMoveRight(Vec3{}), 10.0);
+}
+
+TEST(PointerDevice, SlowsCursorWhenForceResistsMotion)
+{
+  // 1 N against the motion: gain 1 - 0.3 = 0.7 (climbing toward the viewer feels heavier).
+  EXPECT_NEAR(cursorAfterMoveRight(Vec3{ -1.0, 0.0, 0.0 }), 7.0, 1e-9);
+}
+
+TEST(PointerDevice, SpeedsCursorWhenForceAssistsMotion)
+{
+  EXPECT_NEAR(cursorAfterMoveRight(Vec3{ 1.0, 0.0, 0.0 }), 13.0, 1e-9);
+}
+
+TEST(PointerDevice, KeepsGainWhenForceIsPerpendicular)
+{
+  EXPECT_NEAR(cursorAfterMoveRight(Vec3{ 0.0, 2.0, 0.0 }), 10.0, 1e-9);
+}
+
+TEST(PointerDevice, BoundsGainWhenForceIsHuge)
+{
+  // 3 N cap, gain clamped to 0.2 at worst.
+  EXPECT_NEAR(cursorAfterMoveRight(Vec3{ -100.0, 0.0, 0.0 }), 2.0, 1e-9);
+}
+
+TEST(PointerDevice, ReportsPressureFromModifierAndWheel)
+{
+  PointerDevice device;
+  ASSERT_EQ(device.open(), DeviceStatus::Ok);
+  DeviceState s;
+  device.addWheelSteps(3);
+  device.read(s);
+  EXPECT_NEAR(s.pressure, 0.3, 1e-12);
+  device.setModifierPressed(true);
+  device.read(s);
+  EXPECT_DOUBLE_EQ(s.pressure, 1.0);
+  device.setModifierPressed(false);
+  device.addWheelSteps(-10);
+  device.read(s);
+  EXPECT_DOUBLE_EQ(s.pressure, 0.0);
+  device.setButtons(0x4);
+  device.read(s);
+  EXPECT_EQ(s.buttons, 0x4u);
+}
+
+TEST(PointerDevice, ExposesForceForDisplayWhenWritten)
+{
+  PointerDevice device;
+  ASSERT_EQ(device.open(), DeviceStatus::Ok);
+  device.write(Vec3{ 0.5, -0.25, 0.0 });
+  EXPECT_DOUBLE_EQ(device.displayedForce_Device_N().x, 0.5);
+  EXPECT_DOUBLE_EQ(device.displayedForce_Device_N().y, -0.25);
+  EXPECT_EQ(device.write(Vec3{ std::nan(""), 0.0, 0.0 }), DeviceStatus::InvalidArgument);
+  EXPECT_DOUBLE_EQ(device.displayedForce_Device_N().x, 0.0);
+}
+
+TEST(PointerDevice, RecentersCursorUnderPointerWhenAsked)
+{
+  PointerDevice device;
+  ASSERT_EQ(device.open(), DeviceStatus::Ok);
+  DeviceState s;
+  device.write(Vec3{ -1.0, 0.0, 0.0 });
+  device.setPointerPosition(Vec2{ 10.0, 0.0 });
+  device.read(s);
+  EXPECT_NEAR(s.position_Device_mm.x, 7.0, 1e-9);
+  device.recenter();
+  device.read(s);
+  EXPECT_DOUBLE_EQ(s.position_Device_mm.x, 10.0);
+}
+
+TEST(PointerDevice, StaysConsistentWhenHostFeedsFromAnotherThread)
+{
+  PointerDevice device;
+  ASSERT_EQ(device.open(), DeviceStatus::Ok);
+  std::atomic<bool> stop{ false };
+  std::thread host(
+    [&]()
+    {
+      for (int i = 0; !stop; ++i)
+      {
+        // x == y always: a torn read would show x != y.
+        device.setPointerPosition(Vec2{ 0.001 * (i % 1000), 0.001 * (i % 1000) });
+        device.addWheelSteps(i % 2 ? 1 : -1);
+      }
+    });
+  DeviceState s;
+  for (int i = 0; i < 20000; ++i)
+  {
+    device.read(s);
+    device.write(Vec3{});
+    EXPECT_DOUBLE_EQ(
+      device.displayedCursor_Device_mm().x - device.displayedCursor_Device_mm().y, 0.0);
+  }
+  stop = true;
+  host.join();
+}
+
+} // namespace
