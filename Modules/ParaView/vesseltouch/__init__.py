@@ -9,6 +9,8 @@ Load the plugin first (``LoadPlugin(path, ns=globals())`` or the Plugin Manager)
 
 from .mip import ShowAsMIP
 from .info import version, build_info
+from .orientation import ShowPatientOrientation, HidePatientOrientation
 from .scene import OpenDefaultScene, DEFAULT_PHANTOM
 
-__all__ = ["ShowAsMIP", "OpenDefaultScene", "DEFAULT_PHANTOM", "version", "build_info"]
+__all__ = ["ShowAsMIP", "OpenDefaultScene", "DEFAULT_PHANTOM", "ShowPatientOrientation",
+           "HidePatientOrientation", "version", "build_info"]

@@ -1,0 +1,260 @@
+#include "vtkVesselTouchImageReader.h"
+
+#include "vtouchVolumeIO.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+
+#include <filesystem>
+#include <sstream>
+
+vtkStandardNewMacro(vtkVesselTouchImageReader);
+
+namespace
+{
+int vtkTypeOf(vtouch::VoxelType type)
+{
+  switch (type)
+  {
+    case vtouch::VoxelType::Int8:
+      return VTK_SIGNED_CHAR;
+    case vtouch::VoxelType::UInt8:
+      return VTK_UNSIGNED_CHAR;
+    case vtouch::VoxelType::Int16:
+      return VTK_SHORT;
+    case vtouch::VoxelType::UInt16:
+      return VTK_UNSIGNED_SHORT;
+    case vtouch::VoxelType::Int32:
+      return VTK_INT;
+    case vtouch::VoxelType::UInt32:
+      return VTK_UNSIGNED_INT;
+    case vtouch::VoxelType::Float32:
+      return VTK_FLOAT;
+    case vtouch::VoxelType::Float64:
+      return VTK_DOUBLE;
+  }
+  return VTK_VOID;
+}
+
+bool isDicomInput(const char* path)
+{
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+  {
+    return true;
+  }
+  const std::string ext = std::filesystem::path(path).extension().string();
+  for (const char* volumeExt : { ".nii", ".gz", ".hdr", ".img", ".nrrd", ".nhdr", ".mha", ".mhd" })
+  {
+    if (ext == volumeExt)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+vtkVesselTouchImageReader::vtkVesselTouchImageReader()
+{
+  this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(1);
+}
+
+vtkVesselTouchImageReader::~vtkVesselTouchImageReader()
+{
+  this->SetFileName(nullptr);
+  this->SetSeriesInstanceUID(nullptr);
+}
+
+int vtkVesselTouchImageReader::CanReadFile(const char* path)
+{
+  return path && vtouch::canReadVolume(path) ? 1 : 0;
+}
+
+vtkStringArray* vtkVesselTouchImageReader::GetSeriesInstanceUIDs()
+{
+  return this->SeriesUIDs;
+}
+
+vtkStringArray* vtkVesselTouchImageReader::GetSeriesSummaries()
+{
+  return this->SeriesLines;
+}
+
+void vtkVesselTouchImageReader::UpdateSeriesList()
+{
+  this->SeriesUIDs->Initialize();
+  this->SeriesLines->Initialize();
+  if (!this->FileName || !isDicomInput(this->FileName))
+  {
+    return;
+  }
+  std::error_code ec;
+  std::string folder = this->FileName;
+  if (!std::filesystem::is_directory(folder, ec))
+  {
+    folder = std::filesystem::path(folder).parent_path().string();
+  }
+  try
+  {
+    for (const vtouch::DicomSeriesSummary& s : vtouch::listDicomSeries(folder))
+    {
+      this->SeriesUIDs->InsertNextValue(s.seriesInstanceUID);
+      this->SeriesLines->InsertNextValue(
+        s.seriesInstanceUID + " (" + std::to_string(s.fileCount) + " files)");
+    }
+  }
+  catch (const vtouch::VolumeIOError&)
+  {
+    // Open() reports the same problem.
+  }
+}
+
+std::string vtkVesselTouchImageReader::Open()
+{
+  this->Source.reset();
+  this->FileFormat.clear();
+  if (!this->FileName || !*this->FileName)
+  {
+    return "no FileName set";
+  }
+  vtouch::VolumeOpenOptions options;
+  if (this->SeriesInstanceUID)
+  {
+    options.seriesInstanceUID = this->SeriesInstanceUID;
+  }
+  try
+  {
+    this->Source = vtouch::openVolume(this->FileName, options);
+  }
+  catch (const vtouch::VolumeIOError& e)
+  {
+    return e.what();
+  }
+  catch (const std::exception& e)
+  {
+    return std::string("unexpected failure: ") + e.what();
+  }
+  const vtouch::VolumeHeader& header = this->Source->header();
+  this->FileFormat = header.format + ", " + vtouch::toString(header.voxelType);
+  for (const std::string& warning : header.warnings)
+  {
+    vtkWarningMacro("VesselTouch reader: " << warning);
+  }
+  return std::string();
+}
+
+int vtkVesselTouchImageReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (this->OpenTime <= this->GetMTime())
+  {
+    this->UpdateSeriesList();
+    this->OpenError = this->Open();
+    this->OpenTime.Modified();
+  }
+  const std::string& error = this->OpenError;
+  int extent[6] = { 0, -1, 0, -1, 0, -1 };
+  if (!error.empty())
+  {
+    // No file name yet (a proxy created before its FileName is set) is not an error.
+    if (this->FileName && *this->FileName)
+    {
+      vtkErrorMacro("VesselTouch reader: " << error << ". The output is empty.");
+    }
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+    return 1;
+  }
+  const vtouch::VolumeHeader& header = this->Source->header();
+  const vtouch::VolumeGeometry g = header.geometry.inFrame(
+    this->OutputFrame == RAS ? vtouch::WorldFrame::RAS : vtouch::WorldFrame::LPS);
+  for (int a = 0; a < 3; ++a)
+  {
+    extent[2 * a + 1] = static_cast<int>(g.dimensions[a]) - 1;
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  outInfo->Set(vtkDataObject::SPACING(), g.spacing_mm.data(), 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), g.origin_mm.data(), 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), g.direction.data(), 9);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, vtkTypeOf(header.voxelType), 1);
+  return 1;
+}
+
+int vtkVesselTouchImageReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (!output)
+  {
+    vtkErrorMacro("VesselTouch reader: missing output image.");
+    return 0;
+  }
+  output->Initialize();
+  if (!this->Source)
+  {
+    return 1; // RequestInformation reported why
+  }
+  const vtouch::VolumeHeader& header = this->Source->header();
+  const vtouch::VolumeGeometry g = header.geometry.inFrame(
+    this->OutputFrame == RAS ? vtouch::WorldFrame::RAS : vtouch::WorldFrame::LPS);
+
+  vtkSmartPointer<vtkDataArray> scalars;
+  scalars.TakeReference(vtkDataArray::CreateDataArray(vtkTypeOf(header.voxelType)));
+  scalars->SetName("ImageScalars");
+  scalars->SetNumberOfComponents(1);
+  // The file is read straight into this array: no intermediate ITK image, no copy.
+  if (!scalars->Resize(static_cast<vtkIdType>(g.voxelCount())))
+  {
+    vtkErrorMacro(
+      "VesselTouch reader: cannot allocate " << header.byteCount() << " bytes for the volume.");
+    return 1;
+  }
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(g.voxelCount()));
+  auto progress = [this](double fraction)
+  {
+    this->UpdateProgress(fraction);
+    return !this->CheckAbort();
+  };
+  try
+  {
+    if (!this->Source->read(scalars->GetVoidPointer(0), header.byteCount(), progress))
+    {
+      return 1; // aborted by the user: an empty output, no error
+    }
+  }
+  catch (const vtouch::VolumeIOError& e)
+  {
+    vtkErrorMacro("VesselTouch reader: " << e.what() << ". The output is empty.");
+    return 1;
+  }
+  output->SetDimensions(static_cast<int>(g.dimensions[0]),
+    static_cast<int>(g.dimensions[1]),
+    static_cast<int>(g.dimensions[2]));
+  output->SetSpacing(g.spacing_mm.data());
+  output->SetOrigin(g.origin_mm.data());
+  output->SetDirectionMatrix(g.direction.data());
+  output->GetPointData()->SetScalars(scalars);
+  return 1;
+}
+
+void vtkVesselTouchImageReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n"
+     << indent
+     << "SeriesInstanceUID: " << (this->SeriesInstanceUID ? this->SeriesInstanceUID : "(largest)")
+     << "\n"
+     << indent << "OutputFrame: " << (this->OutputFrame == RAS ? "RAS" : "LPS") << "\n"
+     << indent << "FileFormat: " << this->FileFormat << "\n";
+}

@@ -1,0 +1,92 @@
+// VesselTouch image reader: DICOM series, NIfTI (.nii, .nii.gz), NRRD (.nrrd, .nhdr) and
+// MetaImage (.mha, .mhd) through ITK IO, with origin, spacing and direction matrix kept.
+//
+// The output vtkImageData is in LPS millimetres (like ITK and DICOM) unless OutputFrame is RAS:
+// voxel (i, j, k) sits at Origin + DirectionMatrix * diag(Spacing) * (i, j, k). RAS files (NIfTI,
+// NRRD in a RAS space) are converted to LPS on read by negating x and y. Voxels are read straight
+// into the output array (no intermediate copy, except inside ITK's NIfTI library). Bad input
+// (missing or corrupt file, 2D or 4D image, colour pixels, unsupported pixel type, a DICOM series
+// with gaps, duplicates or mixed orientations) gives a vtkErrorMacro and an empty output.
+#ifndef vtkVesselTouchImageReader_h
+#define vtkVesselTouchImageReader_h
+
+#include "vtkImageAlgorithm.h"
+#include "vtkNew.h"                    // for vtkNew
+#include "vtkTimeStamp.h"              // for vtkTimeStamp
+#include "vtkVesselTouchLogicModule.h" // for export macro
+
+#include <memory> // for std::unique_ptr
+#include <string> // for std::string
+
+class vtkStringArray;
+
+namespace vtouch
+{
+class VolumeSource;
+}
+
+class VTKVESSELTOUCHLOGIC_EXPORT vtkVesselTouchImageReader : public vtkImageAlgorithm
+{
+public:
+  static vtkVesselTouchImageReader* New();
+  vtkTypeMacro(vtkVesselTouchImageReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// A volume file, a DICOM file (its whole series is read) or a folder of DICOM files.
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+
+  /// DICOM only: the Series Instance UID to read when the folder holds several series. Empty
+  /// (default): the series of the chosen file, or the series with the most files for a folder.
+  vtkSetStringMacro(SeriesInstanceUID);
+  vtkGetStringMacro(SeriesInstanceUID);
+
+  enum WorldFrame
+  {
+    LPS = 0,
+    RAS = 1
+  };
+  /// World frame of the output: LPS (default; ITK, DICOM) or RAS (3D Slicer, VMTK, NIfTI's own
+  /// frame): RAS negates x and y of the origin and of the direction matrix rows.
+  vtkSetClampMacro(OutputFrame, int, LPS, RAS);
+  vtkGetMacro(OutputFrame, int);
+
+  /// 1 when the file looks readable (extension or DICOM preamble; a folder with a DICOM file).
+  int CanReadFile(const char* path);
+
+  /// After UpdateInformation: the DICOM series found in the folder (largest first), as UIDs and
+  /// as "UID (N files)" lines; empty for other formats.
+  vtkStringArray* GetSeriesInstanceUIDs();
+  vtkStringArray* GetSeriesSummaries();
+
+  /// After UpdateInformation: the format read ("NIfTI", "NRRD", "MetaImage", "DICOM series", ...)
+  /// and the voxel type, or empty when the file could not be opened.
+  const char* GetFileFormat() { return this->FileFormat.c_str(); }
+
+protected:
+  vtkVesselTouchImageReader();
+  ~vtkVesselTouchImageReader() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkVesselTouchImageReader(const vtkVesselTouchImageReader&) = delete;
+  void operator=(const vtkVesselTouchImageReader&) = delete;
+
+  /// Opens the file (header only); empty on success, else the reason.
+  std::string Open();
+  void UpdateSeriesList();
+
+  char* FileName = nullptr;
+  char* SeriesInstanceUID = nullptr;
+  int OutputFrame = LPS;
+  std::string FileFormat;
+  std::string OpenError;
+  vtkTimeStamp OpenTime; // when Open() last ran; reopened only after a property change
+  std::unique_ptr<vtouch::VolumeSource> Source;
+  vtkNew<vtkStringArray> SeriesUIDs;
+  vtkNew<vtkStringArray> SeriesLines;
+};
+
+#endif
