@@ -57,7 +57,7 @@ if ((!quick)); then
   if "$root/Utilities/build.sh" "$root/build-asan" "${common[@]}" "-DVESSELTOUCH_SANITIZER=address;undefined"; then
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       LSAN_OPTIONS="suppressions=$root/Testing/Utilities/lsan.supp" \
-      run_ctest asan-ubsan "$root/build-asan" -L unit
+      run_ctest asan-ubsan "$root/build-asan"
   else
     echo "test.sh: the ASan+UBSan build failed" >&2
     status=1

@@ -1,0 +1,60 @@
+// The one interface every force law implements, and what the haptic tick hands to it.
+#pragma once
+
+#include "vtouchDeviceTypes.h"
+#include "vtouchTracer.h"
+#include "vtouchViewModel.h"
+
+#include <cstdint>
+
+namespace vtouch
+{
+
+/// The force laws, switchable at run time (values are stable: they are stored in settings/Python).
+enum class ForceLawId : std::uint8_t
+{
+  Ldgf = 0,            ///< Yi & Hayward lateral depth gradient force, eq. 2
+  ChangeOfHeight = 1,  ///< Hayward & Yi change of height, eq. 3, robust mu (Appendix A)
+  LateralGradient = 2, ///< baseline: f = -k grad(height) of the centerline depth map, in the plane
+  ConstraintProxy = 3, ///< Ikits et al.: proxy on a local frame + virtual coupler
+  None = 4             ///< no force (free cursor everywhere)
+};
+constexpr int kForceLawCount = 5;
+const char* toString(ForceLawId id);
+
+/// Everything a force law may read in one tick. Frames: screen/device plane, x right, y up.
+struct ForceInput
+{
+  const ViewModel* view = nullptr; ///< never null when a law is called
+  InteractionState state = InteractionState::Exploring;
+  AgentSample agent;                 ///< valid only while tracing
+  Vec2 cursor_px;                    ///< cursor on the screen, pixels
+  Vec2 handDelta_Device_mm;          ///< hand motion since the previous tick (device plane)
+  Vec2 handVelocity_Device_mm_per_s; ///< from the device's velocity estimator
+  double pixelsPerHandMm = 1.0;      ///< cursor pixels per hand millimetre (includes the zoom)
+  double zoneGain_N = 0.0;           ///< k(P) from the force zones, newtons per unit slope
+  double zoneFraction = 0.0;         ///< k(P) / gain in [0, 1] (scales spring laws)
+  double dt_s = 0.001;               ///< tick period
+  const DeviceCapabilities* capabilities = nullptr; ///< may be null (no bounds applied)
+};
+
+/// What a law may ask of the tick besides a force.
+struct ForceRequest
+{
+  int snapToPoint = -1; ///< >= 0: move the agent to this global point (Ikits' snap-drag)
+};
+
+/// A force law. compute() runs in the haptic tick: it must not allocate, lock, log or throw.
+/// Parameters are plain public fields documented in each law, set between ticks by the owner.
+class ForceLaw
+{
+public:
+  virtual ~ForceLaw() = default;
+  virtual ForceLawId id() const = 0;
+  /// Clears internal state (estimators, proxy offsets), e.g. on a new contact.
+  virtual void reset() noexcept = 0;
+  /// The force on the user's hand in the device plane, newtons.
+  virtual Vec2 compute(const ForceInput& in, ForceRequest& request) noexcept = 0;
+};
+
+} // namespace vtouch

@@ -1,0 +1,68 @@
+// Every run-time setting of the haptic pipeline in one trivially copyable struct, so the GUI can
+// publish it to the haptic thread through a SeqLock.
+#pragma once
+
+#include "vtouchForceLaw.h"
+
+#include <cstdint>
+
+namespace vtouch
+{
+
+struct HapticParameters
+{
+  // --- force law selection ---
+  /// The active force law. Default LDGF.
+  ForceLawId forceLaw = ForceLawId::Ldgf;
+  /// Crossfade duration when the law changes, s (no force jump). Default 0.005 s.
+  double crossfade_s = 0.005;
+
+  // --- LDGF and change of height (see their headers) ---
+  double ldgfLambda_mm = 0.005; ///< LDGF lambda, mm. Default 0.005 mm
+  double cohLambda_mm = 0.005;  ///< change-of-height lambda, mm. Default 0.005 mm
+  /// (the dz/dl stencil window is a scene setting: HapticSession::setSlopeWindow_mm, default 1 mm)
+  double cohZMax_mm = 1.0;      ///< motion window saturation z_max, mm. Default 1 mm
+  double cohForgetTime_s = 0.1; ///< motion window forgetting time, s. Default 0.1 s
+  // --- lateral gradient baseline ---
+  double lateralProbe_px = 2.0; ///< central difference half-width, px. Default 2 px
+  // --- constraint proxy (Ikits) ---
+  double proxyStiffness_N_per_m = 200.0; ///< k_c, N/m. Default 200
+  double proxyDamping_N_s_per_m = 0.1;   ///< b_c, N s/m. Default 0.1
+  bool proxyTangentDrag = false;         ///< tangent rule: false Free, true Drag. Default Free
+  double proxyTangentThreshold_N = 0.3;  ///< drag threshold tau_t, N. Default 0.3
+  bool proxySnapDrag = false;            ///< normal rule: false Rigid, true SnapDrag. Default Rigid
+  double proxySnapThreshold_N = 1.5;     ///< snap threshold, N. Default 1.5
+  double proxyKappaLow = 0.15;           ///< stiffness transfer knee s0. Default 0.15
+  double proxyKappaHigh = 0.5;           ///< stiffness transfer knee s1. Default 0.5
+
+  // --- force zones k(P) ---
+  double zoneGain_N = 1.0;        ///< gain k in the saturation zone, N. Default 1 N
+  double zoneZeroBelow = 0.05;    ///< end of the zero-force zone (normalized pressure). 0.05
+  double zoneSaturateAbove = 0.5; ///< start of the saturation zone. Default 0.5
+
+  // --- cursor mapping, zoom, re-indexing ---
+  /// Cursor pixels per hand millimetre at zoom 1. Default 4 px/mm (a 160 mm device sweeps 640 px).
+  double pixelsPerDeviceMm = 4.0;
+  /// Haptic zoom r = cursor movement / hand movement, clamped to [0.1, 10]. Default 1.
+  /// The felt slope stays the same at any zoom: the slope laws (LDGF, change of height, lateral
+  /// gradient) render the geometric slope tan(beta) = dz/dl, which does not depend on r, and the
+  /// proxy coupler measures the hand-proxy offset in hand millimetres (pixels / (r x mapping)), so
+  /// its stiffness is felt the same too. Only the cursor's travel per hand millimetre changes.
+  double zoom = 1.0;
+  /// With a pressure input: below this pressure the stylus is lifted and the cursor is frozen
+  /// while the hand moves (re-indexing). Default 0.02.
+  double reindexPressure = 0.02;
+  /// Buttons that re-index while held (devices without z). Default button 1 (mask 0x2).
+  std::uint32_t reindexButtonMask = 0x2;
+  /// Buttons whose press returns from tracing to exploring. Default button 0 (mask 0x1).
+  std::uint32_t releaseButtonMask = 0x1;
+
+  // --- tracing and smoothing ---
+  double tracerDeadBand_px = 0.25;     ///< the agent stays still below this projection, px. 0.25
+  double maxForceRate_N_per_s = 100.0; ///< time-domain interpolation bound, N/s. Default 100
+
+  static constexpr double kMinZoom = 0.1;
+  static constexpr double kMaxZoom = 10.0;
+};
+
+} // namespace vtouch

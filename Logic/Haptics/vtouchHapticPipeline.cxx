@@ -1,0 +1,220 @@
+#include "vtouchHapticPipeline.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vtouch
+{
+
+HapticPipeline::HapticPipeline()
+{
+  this->Laws[static_cast<int>(ForceLawId::Ldgf)] = &this->Ldgf;
+  this->Laws[static_cast<int>(ForceLawId::ChangeOfHeight)] = &this->ChangeOfHeight;
+  this->Laws[static_cast<int>(ForceLawId::LateralGradient)] = &this->Lateral;
+  this->Laws[static_cast<int>(ForceLawId::ConstraintProxy)] = &this->Proxy;
+  this->Laws[static_cast<int>(ForceLawId::None)] = nullptr;
+}
+
+void HapticPipeline::reset() noexcept
+{
+  this->Trace.release();
+  for (ForceLaw* law : this->Laws)
+  {
+    if (law)
+    {
+      law->reset();
+    }
+  }
+  this->Interpolator.reset();
+  this->HasCursor = false;
+  this->HasHand = false;
+  this->LastButtons = 0;
+  this->Fade = 1.0;
+}
+
+void HapticPipeline::zeroForce() noexcept
+{
+  this->Interpolator.reset();
+}
+
+void HapticPipeline::applyParameters(const HapticParameters& p)
+{
+  this->Ldgf.lambda_mm = p.ldgfLambda_mm;
+  this->ChangeOfHeight.lambda_mm = p.cohLambda_mm;
+  this->ChangeOfHeight.zMax_mm = p.cohZMax_mm;
+  this->ChangeOfHeight.forgetTime_s = p.cohForgetTime_s;
+  this->Lateral.probe_px = p.lateralProbe_px;
+  this->Proxy.stiffness_N_per_m = p.proxyStiffness_N_per_m;
+  this->Proxy.damping_N_s_per_m = p.proxyDamping_N_s_per_m;
+  this->Proxy.tangentRule = p.proxyTangentDrag ? ConstraintProxyForceLaw::TangentRule::Drag
+                                               : ConstraintProxyForceLaw::TangentRule::Free;
+  this->Proxy.tangentThreshold_N = p.proxyTangentThreshold_N;
+  this->Proxy.normalRule = p.proxySnapDrag ? ConstraintProxyForceLaw::NormalRule::SnapDrag
+                                           : ConstraintProxyForceLaw::NormalRule::Rigid;
+  this->Proxy.snapThreshold_N = p.proxySnapThreshold_N;
+  this->Proxy.kappaLow = p.proxyKappaLow;
+  this->Proxy.kappaHigh = p.proxyKappaHigh;
+  this->Zones.gain_N = p.zoneGain_N;
+  this->Zones.zeroBelow = p.zoneZeroBelow;
+  this->Zones.saturateAbove = p.zoneSaturateAbove;
+  this->Interpolator.maxRate_N_per_s = p.maxForceRate_N_per_s;
+  this->Trace.deadBand_px = std::max(0.0, p.tracerDeadBand_px);
+}
+
+Vec2 HapticPipeline::renderLaws(const ForceInput& fin,
+  const HapticParameters& p,
+  ForceRequest& req) noexcept
+{
+  const int requested = static_cast<int>(p.forceLaw);
+  if (requested >= 0 && requested < kForceLawCount && p.forceLaw != this->Active)
+  {
+    // Start a crossfade from whatever is rendered now (even mid-fade: restart from the new pair).
+    this->Previous = this->Active;
+    this->Active = p.forceLaw;
+    // Nothing was rendered before the first tick: no fade then.
+    this->Fade = (p.crossfade_s > 0.0 && this->Ticks > 1) ? 0.0 : 1.0;
+    if (ForceLaw* law = this->Laws[static_cast<int>(this->Active)])
+    {
+      law->reset();
+    }
+  }
+  ForceLaw* active = this->Laws[static_cast<int>(this->Active)];
+  const Vec2 fActive = active ? active->compute(fin, req) : Vec2{};
+  if (this->Fade >= 1.0)
+  {
+    return fActive;
+  }
+  ForceLaw* previous = this->Laws[static_cast<int>(this->Previous)];
+  ForceRequest ignored;
+  const Vec2 fPrevious = previous ? previous->compute(fin, ignored) : Vec2{};
+  this->Fade = std::min(1.0, this->Fade + fin.dt_s / std::max(p.crossfade_s, 1e-9));
+  // Smoothstep weights: continuous force and continuous force rate at both ends of the fade.
+  const double w = this->Fade * this->Fade * (3.0 - 2.0 * this->Fade);
+  return fPrevious * (1.0 - w) + fActive * w;
+}
+
+AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) noexcept
+{
+  this->applyParameters(p);
+  AgentState out;
+  out.time_s = in.time_s;
+  out.tick = ++this->Ticks;
+  const ViewModel* vm = in.view;
+  const DeviceState& dev = in.device;
+  const Vec2 hand{ dev.position_Device_mm.x, dev.position_Device_mm.y };
+  out.hand_Device_mm = hand;
+
+  // Cursor: hand motion times (mapping x zoom), unless re-indexing.
+  const double zoom = std::clamp(
+    std::isfinite(p.zoom) ? p.zoom : 1.0, HapticParameters::kMinZoom, HapticParameters::kMaxZoom);
+  const double pxPerMm = std::max(1e-6, p.pixelsPerDeviceMm) * zoom;
+  const bool hasPressure = in.capabilities ? in.capabilities->hasPressure : false;
+  this->Zones.usePressure = hasPressure;
+  const bool reindex =
+    (hasPressure && !(dev.pressure >= p.reindexPressure)) || (dev.buttons & p.reindexButtonMask);
+  out.reindexing = reindex;
+  Vec2 handDelta;
+  if (this->HasHand && hand.isFinite())
+  {
+    handDelta = hand - this->LastHand;
+  }
+  if (hand.isFinite())
+  {
+    this->LastHand = hand;
+    this->HasHand = true;
+  }
+  if (vm && !this->HasCursor)
+  {
+    this->Cursor = { 0.5 * vm->mapWidth(), 0.5 * vm->mapHeight() };
+    this->HasCursor = true;
+  }
+  if (!reindex)
+  {
+    this->Cursor = this->Cursor + handDelta * pxPerMm;
+  }
+  if (vm)
+  {
+    this->Cursor.x = std::clamp(this->Cursor.x, 0.0, std::max(0.0, vm->mapWidth() - 1e-6));
+    this->Cursor.y = std::clamp(this->Cursor.y, 0.0, std::max(0.0, vm->mapHeight() - 1e-6));
+  }
+  out.cursor_px = this->Cursor;
+
+  // State machine.
+  const std::uint32_t pressed = dev.buttons & ~this->LastButtons;
+  this->LastButtons = dev.buttons;
+  if (pressed & p.releaseButtonMask)
+  {
+    this->Trace.release();
+  }
+  if (!vm || (this->Trace.state() == InteractionState::Tracing &&
+               this->Trace.topologyId() != vm->topology().id()))
+  {
+    this->Trace.release();
+  }
+  if (vm)
+  {
+    if (this->Trace.state() == InteractionState::Exploring)
+    {
+      this->Trace.tryContact(*vm, this->Cursor);
+    }
+    else
+    {
+      this->Trace.trail_px = this->Active == ForceLawId::ConstraintProxy
+                               ? this->Proxy.tangentTrail_px(in.capabilities, pxPerMm, in.dt_s)
+                               : 0.0;
+      this->Trace.follow(*vm, this->Cursor);
+    }
+  }
+
+  // Forces.
+  Vec2 target;
+  ForceInput fin;
+  if (vm)
+  {
+    fin.view = vm;
+    fin.state = this->Trace.state();
+    if (fin.state == InteractionState::Tracing)
+    {
+      fin.agent = this->Trace.sample(*vm);
+    }
+    fin.cursor_px = this->Cursor;
+    fin.handDelta_Device_mm = handDelta;
+    fin.handVelocity_Device_mm_per_s = { dev.velocity_Device_mm_per_s.x,
+      dev.velocity_Device_mm_per_s.y };
+    fin.pixelsPerHandMm = pxPerMm;
+    fin.zoneGain_N = this->Zones.gain(dev.pressure);
+    fin.zoneFraction = this->Zones.fraction(dev.pressure);
+    fin.dt_s = in.dt_s;
+    fin.capabilities = in.capabilities;
+    ForceRequest req;
+    target = this->renderLaws(fin, p, req);
+    if (req.snapToPoint >= 0)
+    {
+      this->Trace.placeAt(*vm, req.snapToPoint);
+    }
+    out.zoneGain_N = fin.zoneGain_N;
+  }
+  if (!target.isFinite())
+  {
+    target = {};
+  }
+  out.targetForce_N = target;
+  out.force_N = this->Interpolator.step(target, in.dt_s);
+
+  out.state = this->Trace.state();
+  out.forceLaw = this->Active;
+  out.directionOfTravel = this->Trace.directionOfTravel();
+  out.torsionAngle_rad = this->Trace.torsionAngle_rad();
+  if (vm && out.state == InteractionState::Tracing)
+  {
+    const AgentSample s = this->Trace.sample(*vm);
+    out.path = vm->topology().pathOf(s.point);
+    out.point = vm->topology().pointOf(s.point);
+    out.agentScreen_px = s.screen_px;
+    out.position_World_mm = s.position_World_mm;
+    out.tangent_World = s.tangent_World;
+  }
+  return out;
+}
+
+} // namespace vtouch

@@ -1,0 +1,84 @@
+// The camera-independent part of the haptic scene model: how the Q-skeleton's points connect.
+// Built once per skeleton (off the haptic thread); shared by every view model of that skeleton.
+#pragma once
+
+#include "vtouchQSkeleton.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace vtouch
+{
+
+/// Points are numbered globally: point `i` of path `p` is `pathOffset[p] + i`.
+/// The graph has an edge between consecutive points of a path and one per junction (child end point
+/// <-> parent point); loop closures are junctions, so the graph may have cycles.
+class SceneTopology
+{
+public:
+  /// `slopeWindow_mm`: 3D arc length of the centred stencil used for dz/dl (see ViewModelBuilder).
+  static std::shared_ptr<const SceneTopology> build(const QSkeleton& skeleton,
+    double slopeWindow_mm);
+
+  int pointCount() const { return static_cast<int>(this->PathOf.size()); }
+  int pathCount() const { return static_cast<int>(this->PathOffset.size()) - 1; }
+  int globalIndex(int path, int point) const { return this->PathOffset[path] + point; }
+  int pathOf(int g) const { return this->PathOf[g]; }
+  int pointOf(int g) const { return g - this->PathOffset[this->PathOf[g]]; }
+  int pathBegin(int path) const { return this->PathOffset[path]; }
+  int pathEnd(int path) const { return this->PathOffset[path + 1]; }
+
+  /// Graph neighbours of global point g: writes up to `capacity` indices, returns how many.
+  /// Never allocates (safe in the haptic tick).
+  int neighbours(int g, int* out, int capacity) const;
+  /// Largest number of neighbours any point has.
+  int maxDegree() const { return this->MaxDegree; }
+
+  /// Centred stencils for the tangent estimate used by dz/dl: the inner one reaches about half the
+  /// window on each side along the path (wrapping around closed loops), the outer one twice as far.
+  /// The unit tangent estimate is
+  ///   D = innerWeight * (P[hiInner] - P[loInner]) - outerWeight * (P[hiOuter] - P[loOuter]),
+  /// a Richardson extrapolation of the two central differences (error O(h^4) instead of O(h^2),
+  /// which keeps tight bends within 2 %); near free path ends it falls back to one difference.
+  int stencilLow(int g) const { return this->Stencil[g].loInner; }
+  int stencilHigh(int g) const { return this->Stencil[g].hiInner; }
+  const Vec3& tangentEstimate(int g) const { return this->TangentEstimate[g]; }
+  /// Positions as float arrays (structure of arrays) for the vectorized projection of a rebuild.
+  const float* positionsX() const { return this->PackedX.data(); }
+  const float* positionsY() const { return this->PackedY.data(); }
+  const float* positionsZ() const { return this->PackedZ.data(); }
+  /// The stencil window, mm: dz and dl are reported per window (ViewModel).
+  double slopeWindow_mm() const { return this->Window_mm; }
+
+  const Vec3& position_World_mm(int g) const { return this->Position[g]; }
+  const Vec3& tangent_World(int g) const { return this->Tangent[g]; }
+  double torsion_per_mm(int g) const { return this->Torsion[g]; }
+  double radius_mm(int g) const { return this->Radius[g]; }
+  /// Identifies the skeleton (changes each build) so agent state knows when indices are stale.
+  std::uint64_t id() const { return this->Id; }
+
+private:
+  std::vector<int> PathOffset;
+  std::vector<int> PathOf;
+  struct StencilEntry
+  {
+    int loInner = 0, hiInner = 0, loOuter = 0, hiOuter = 0;
+    double innerWeight = 0.0, outerWeight = 0.0;
+  };
+  std::vector<StencilEntry> Stencil;
+  std::vector<Vec3> TangentEstimate;
+  std::vector<float> PackedX, PackedY, PackedZ;
+  double Window_mm = 1.0;
+  std::vector<Vec3> Position;
+  std::vector<Vec3> Tangent;
+  std::vector<double> Torsion;
+  std::vector<double> Radius;
+  // Junction edges in CSR form (most points have none).
+  std::vector<int> JunctionBegin;
+  std::vector<int> JunctionTarget;
+  int MaxDegree = 2;
+  std::uint64_t Id = 0;
+};
+
+} // namespace vtouch

@@ -1,0 +1,259 @@
+#include "vtouchTracer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vtouch
+{
+
+namespace
+{
+constexpr int kMaxNeighbours = 16;
+constexpr double kZeroLength_px = 1e-6;
+constexpr int kLookAhead = 256;
+
+Vec2 unit(const Vec2& v)
+{
+  const double n = v.norm();
+  return n > 0.0 ? v * (1.0 / n) : Vec2{};
+}
+} // namespace
+
+void Tracer::release()
+{
+  this->State = InteractionState::Exploring;
+  this->Location = {};
+  this->Direction = 0;
+}
+
+void Tracer::placeAt(const ViewModel& vm, int g)
+{
+  this->State = InteractionState::Tracing;
+  this->Location = { g, -1, 0.0 };
+  this->Direction = 0;
+  this->TopologyId = vm.topology().id();
+}
+
+bool Tracer::tryContact(const ViewModel& vm, const Vec2& cursor_px)
+{
+  if (!cursor_px.isFinite())
+  {
+    return false;
+  }
+  const int g = vm.contactAt(
+    static_cast<int>(std::floor(cursor_px.x)), static_cast<int>(std::floor(cursor_px.y)));
+  if (g < 0)
+  {
+    return false;
+  }
+  // The map holds the screen-nearest splatted pixel; refine to the nearest point along the path.
+  const SceneTopology& topo = vm.topology();
+  const int path = topo.pathOf(g);
+  const int lo = std::max(topo.pathBegin(path), g - this->refineWindow);
+  const int hi = std::min(topo.pathEnd(path) - 1, g + this->refineWindow);
+  int best = g;
+  double bestD = (vm.screen_px(g) - cursor_px).norm();
+  for (int k = lo; k <= hi; ++k)
+  {
+    const double d = (vm.screen_px(k) - cursor_px).norm();
+    if (d < bestD)
+    {
+      bestD = d;
+      best = k;
+    }
+  }
+  this->placeAt(vm, best);
+  return true;
+}
+
+Vec2 Tracer::directionTo(const ViewModel& vm, int a, int m) const
+{
+  const Vec2 pa = vm.screen_px(a);
+  Vec2 d = vm.screen_px(m) - pa;
+  if (d.norm() > kZeroLength_px)
+  {
+    return unit(d);
+  }
+  // The edge is (nearly) parallel to the view direction: look further along the chain until the
+  // screen position changes, so the agent can pass through a vessel seen end-on.
+  const SceneTopology& topo = vm.topology();
+  int prev = a;
+  int cur = m;
+  int nb[kMaxNeighbours];
+  for (int k = 0; k < kLookAhead; ++k)
+  {
+    const int count = topo.neighbours(cur, nb, kMaxNeighbours);
+    int next = -1;
+    const int straight = cur + (cur - prev);
+    for (int i = 0; i < count; ++i)
+    {
+      if (nb[i] == straight && topo.pathOf(nb[i]) == topo.pathOf(cur))
+      {
+        next = nb[i];
+      }
+    }
+    for (int i = 0; i < count && next < 0; ++i)
+    {
+      if (nb[i] != prev)
+      {
+        next = nb[i];
+      }
+    }
+    if (next < 0)
+    {
+      return {};
+    }
+    d = vm.screen_px(next) - pa;
+    if (d.norm() > kZeroLength_px)
+    {
+      return unit(d);
+    }
+    prev = cur;
+    cur = next;
+  }
+  return {};
+}
+
+double Tracer::advance(const ViewModel& vm, int a, int b, double fromT, double toT)
+{
+  // Torsion angle and direction bookkeeping for a move on edge a->b from fromT to toT.
+  const SceneTopology& topo = vm.topology();
+  const double len3 = (topo.position_World_mm(b) - topo.position_World_mm(a)).norm();
+  const double ds = (toT - fromT) * len3;
+  const double tau = 0.5 * (topo.torsion_per_mm(a) + topo.torsion_per_mm(b));
+  const int sign = (b > a) ? 1 : -1;
+  this->TorsionAngle += tau * ds * sign;
+  if (std::fabs(toT - fromT) > 0.0)
+  {
+    this->Direction = (toT > fromT) ? sign : -sign;
+  }
+  return std::fabs(toT - fromT) * (vm.screen_px(b) - vm.screen_px(a)).norm();
+}
+
+double Tracer::follow(const ViewModel& vm, const Vec2& cursor_px)
+{
+  if (this->State != InteractionState::Tracing || !this->Location.valid() || !cursor_px.isFinite())
+  {
+    return 0.0;
+  }
+  const SceneTopology& topo = vm.topology();
+  double travelled = 0.0;
+  int nb[kMaxNeighbours];
+  AgentLocation& loc = this->Location;
+  // The agent keeps `keep` behind the cursor's projection: a hysteresis (no stick-slip steps once
+  // moving), and with trail_px the drag threshold of Ikits' eq. 8.
+  const double keep = std::max(this->deadBand_px, this->trail_px);
+  for (int step = 0; step < this->maxStepsPerTick; ++step)
+  {
+    const Vec2 here = loc.t > 0.0 && loc.to >= 0
+                        ? vm.screen_px(loc.from) * (1.0 - loc.t) + vm.screen_px(loc.to) * loc.t
+                        : vm.screen_px(loc.from);
+    const Vec2 r = cursor_px - here;
+    if (loc.t > 0.0)
+    {
+      // Inside an edge: the candidates are its two ends.
+      const Vec2 pa = vm.screen_px(loc.from);
+      const Vec2 pb = vm.screen_px(loc.to);
+      const double len = (pb - pa).norm();
+      const Vec2 u = unit(pb - pa);
+      const double proj = r.dot(u);
+      const double want = std::fabs(proj) - keep;
+      if (std::fabs(proj) <= this->deadBand_px || want <= 0.0 || len <= kZeroLength_px)
+      {
+        break;
+      }
+      const double t0 = loc.t;
+      if (proj > 0.0)
+      {
+        const double tNew = t0 + want / len;
+        if (tNew >= 1.0)
+        {
+          travelled += this->advance(vm, loc.from, loc.to, t0, 1.0);
+          loc = { loc.to, loc.from, 0.0 };
+          continue;
+        }
+        travelled += this->advance(vm, loc.from, loc.to, t0, tNew);
+        loc.t = tNew;
+      }
+      else
+      {
+        const double tNew = t0 - want / len;
+        if (tNew <= 0.0)
+        {
+          travelled += this->advance(vm, loc.from, loc.to, t0, 0.0);
+          loc = { loc.from, loc.to, 0.0 };
+          continue;
+        }
+        travelled += this->advance(vm, loc.from, loc.to, t0, tNew);
+        loc.t = tNew;
+      }
+      break;
+    }
+    // At a point: candidates are all graph neighbours (lower/higher index, joining branches).
+    const int count = topo.neighbours(loc.from, nb, kMaxNeighbours);
+    int best = -1;
+    double bestProj = this->deadBand_px;
+    for (int i = 0; i < count; ++i)
+    {
+      const double proj = r.dot(this->directionTo(vm, loc.from, nb[i]));
+      if (proj > bestProj)
+      {
+        bestProj = proj;
+        best = nb[i];
+      }
+    }
+    const double want = bestProj - keep;
+    if (best < 0 || want <= 0.0)
+    {
+      break; // below the threshold, or at a path end with the cursor beyond it
+    }
+    const double len = (vm.screen_px(best) - vm.screen_px(loc.from)).norm();
+    if (len <= kZeroLength_px || want >= len)
+    {
+      travelled += this->advance(vm, loc.from, best, 0.0, 1.0);
+      loc = { best, loc.from, 0.0 };
+      continue;
+    }
+    travelled += this->advance(vm, loc.from, best, 0.0, want / len);
+    loc = { loc.from, best, want / len };
+    break;
+  }
+  return travelled;
+}
+
+AgentSample Tracer::sample(const ViewModel& vm) const
+{
+  AgentSample s;
+  const AgentLocation& loc = this->Location;
+  const SceneTopology& topo = vm.topology();
+  const int a = loc.from;
+  const bool onEdge = loc.t > 0.0 && loc.to >= 0;
+  const int b = onEdge ? loc.to : a;
+  const double t = onEdge ? loc.t : 0.0;
+  const double wa = 1.0 - t;
+  s.point = t < 0.5 ? a : b;
+  s.screen_px = vm.screen_px(a) * wa + vm.screen_px(b) * t;
+  s.position_World_mm = topo.position_World_mm(a) * wa + topo.position_World_mm(b) * t;
+  s.tangent_World = topo.tangent_World(s.point);
+  // Eta points toward increasing index within each path; across a junction edge the two ends may
+  // disagree, so align b's with a's before blending.
+  Vec2 eb = vm.eta(b);
+  const Vec2 ea = vm.eta(a);
+  double zb = vm.dz_mm(b);
+  if (ea.dot(eb) < 0.0)
+  {
+    eb = eb * -1.0;
+    zb = -zb;
+  }
+  const Vec2 e = ea * wa + eb * t;
+  const double en = e.norm();
+  s.eta = en > 1e-12 ? e * (1.0 / en) : (t < 0.5 ? ea : eb);
+  s.dz_mm = vm.dz_mm(a) * wa + zb * t;
+  s.dl_mm = vm.dl_mm(a) * wa + vm.dl_mm(b) * t;
+  s.frameStrength = vm.frameStrength(a) * wa + vm.frameStrength(b) * t;
+  s.mmPerPixel = vm.mmPerPixel(s.point);
+  s.torsion_per_mm = topo.torsion_per_mm(s.point);
+  return s;
+}
+
+} // namespace vtouch

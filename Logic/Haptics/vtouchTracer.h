@@ -1,0 +1,94 @@
+// The tracing agent of Yi & Hayward: exploring (free cursor) / tracing (agent on the centerline).
+#pragma once
+
+#include "vtouchViewModel.h"
+
+#include <cstdint>
+
+namespace vtouch
+{
+
+enum class InteractionState : std::uint8_t
+{
+  Exploring = 0, ///< the cursor moves freely; contact when within the capture radius of a vessel
+  Tracing = 1    ///< the agent is constrained to the centerline and follows the cursor along it
+};
+
+/// Where the agent is: on the graph edge from point `from` to point `to`, at fraction `t` in [0, 1)
+/// (t == 0 means exactly at `from`; `to` is then -1 or the last edge taken).
+struct AgentLocation
+{
+  int from = -1;
+  int to = -1;
+  double t = 0.0;
+  bool valid() const { return from >= 0; }
+};
+
+/// Interpolated view-model quantities at the agent (see ViewModel for conventions).
+struct AgentSample
+{
+  Vec2 screen_px;
+  Vec3 position_World_mm;
+  Vec3 tangent_World;
+  Vec2 eta; ///< unit, toward increasing point index
+  double dz_mm =
+    0.0; ///< stencil depth change toward increasing index (positive = away from viewer)
+  double dl_mm = 0.0; ///< stencil screen arc length in mm
+  double frameStrength = 0.0;
+  double mmPerPixel = 0.0;
+  double torsion_per_mm = 0.0;
+  int point = -1; ///< nearest global point index
+};
+
+/// Not thread-safe; lives in the haptic tick. Never allocates, locks or throws.
+class Tracer
+{
+public:
+  /// Dead band (pixels): the agent stays still while the cursor's largest projection on the
+  /// candidate directions is below it; once moving it trails the cursor's projection by this much
+  /// (hysteresis: no stick-slip steps). Default 0.25 px.
+  double deadBand_px = 0.25;
+  /// Trailing distance (pixels, >= 0): the agent stops this far behind the cursor's projection
+  /// (the drag threshold of Ikits' eq. 8 along the tangent; 0 = the agent catches up fully).
+  double trail_px = 0.0;
+  /// Safety bound on graph steps per tick (a long jump is finished over the next ticks).
+  int maxStepsPerTick = 4096;
+  /// Contact refinement: after the O(1) contact-map lookup, the nearest point within this many
+  /// points along the path is chosen. Default 16.
+  int refineWindow = 16;
+
+  InteractionState state() const { return this->State; }
+  const AgentLocation& location() const { return this->Location; }
+  /// +1 when the last motion went toward increasing point index, -1 toward decreasing, 0 at rest.
+  int directionOfTravel() const { return this->Direction; }
+  /// Accumulated torsion angle (radians): integral of torsion over the travelled 3D arc length.
+  double torsionAngle_rad() const { return this->TorsionAngle; }
+  /// The topology the location refers to (0 when none).
+  std::uint64_t topologyId() const { return this->TopologyId; }
+
+  /// Returns to exploring (button click, new skeleton).
+  void release();
+  /// Exploring: makes contact when the contact map has a vessel under the cursor. Returns true
+  /// when tracing starts.
+  bool tryContact(const ViewModel& vm, const Vec2& cursor_px);
+  /// Puts the agent on a given point (tests, scripting, snap-drag). Starts tracing.
+  void placeAt(const ViewModel& vm, int globalPoint);
+  /// Tracing: moves the agent along the centerline toward the cursor (see the .cxx for the rule).
+  /// Returns the 2D screen arc length travelled this tick (pixels).
+  double follow(const ViewModel& vm, const Vec2& cursor_px);
+
+  /// Interpolated quantities at the agent. Requires a valid location.
+  AgentSample sample(const ViewModel& vm) const;
+
+private:
+  Vec2 directionTo(const ViewModel& vm, int a, int m) const;
+  double advance(const ViewModel& vm, int a, int b, double fromT, double toT);
+
+  InteractionState State = InteractionState::Exploring;
+  AgentLocation Location;
+  int Direction = 0;
+  double TorsionAngle = 0.0;
+  std::uint64_t TopologyId = 0;
+};
+
+} // namespace vtouch

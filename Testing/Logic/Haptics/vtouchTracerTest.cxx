@@ -1,0 +1,202 @@
+#include "vtouchHapticsTestUtilities.h"
+#include "vtouchTracer.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace vtouch
+{
+namespace
+{
+using namespace vtouch::testing;
+
+// Screen of topCamera({0,0,0}): world (x, y) mm -> pixel (400 + 4x, 300 + 4y).
+Vec2 px(double x_mm, double y_mm)
+{
+  return { 400.0 + 4.0 * x_mm, 300.0 + 4.0 * y_mm };
+}
+
+TEST(Tracer, ContactOnlyWithinCaptureRadius)
+{
+  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }), 8.0);
+  Tracer tracer;
+  EXPECT_FALSE(tracer.tryContact(*vm, px(0, 2.5))); // 10 px away
+  EXPECT_EQ(tracer.state(), InteractionState::Exploring);
+  EXPECT_TRUE(tracer.tryContact(*vm, px(3.1, 1.5))); // 6 px away
+  EXPECT_EQ(tracer.state(), InteractionState::Tracing);
+  const AgentSample a = tracer.sample(*vm);
+  EXPECT_NEAR(a.position_World_mm.x, 3.0, 0.13); // the nearest point along the path
+  tracer.release();
+  EXPECT_EQ(tracer.state(), InteractionState::Exploring);
+}
+
+TEST(Tracer, StaysStillBelowDeadBand)
+{
+  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  tracer.deadBand_px = 0.5;
+  ASSERT_TRUE(tracer.tryContact(*vm, px(0, 0)));
+  const Vec3 before = tracer.sample(*vm).position_World_mm;
+  EXPECT_EQ(tracer.follow(*vm, px(0, 0) + Vec2{ 0.4, 3.0 }), 0.0); // along-path part 0.4 px
+  EXPECT_EQ(tracer.sample(*vm).position_World_mm.x, before.x);
+  EXPECT_GT(tracer.follow(*vm, px(0, 0) + Vec2{ 2.0, 0.0 }), 0.0);
+  EXPECT_NEAR(tracer.sample(*vm).screen_px.x, px(0, 0).x + 1.5, 1e-3); // trails by the dead band
+}
+
+TEST(Tracer, StopsAtPathEnd)
+{
+  const QSkeleton s = straightLine({ -5, 0, 0 }, { 5, 0, 0 }, 0.25);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  ASSERT_TRUE(tracer.tryContact(*vm, px(0, 0)));
+  tracer.follow(*vm, px(30, 0)); // far beyond the end, in one tick
+  EXPECT_EQ(tracer.sample(*vm).point, vm->pointCount() - 1);
+  EXPECT_EQ(tracer.state(), InteractionState::Tracing);
+  tracer.follow(*vm, px(-30, 0));
+  EXPECT_EQ(tracer.sample(*vm).point, 0);
+}
+
+TEST(Tracer, ContinuesAroundLoopWithoutJump)
+{
+  // A circle of radius 10 mm in the screen plane, closed by a junction tail -> head.
+  const int n = 252;
+  QSkeleton s = singlePath(
+    [](double t)
+    {
+      return Vec3{
+        10 * std::cos(2 * kPi * t * (n - 1) / n), 10 * std::sin(2 * kPi * t * (n - 1) / n), 0
+      };
+    },
+    n);
+  join(s, 0, Junction::End::Tail, 0, 0);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  ASSERT_TRUE(tracer.tryContact(*vm, px(10, 0)));
+  Vec2 last = tracer.sample(*vm).screen_px;
+  double angle = 0.0;
+  int wraps = 0;
+  int previousPoint = tracer.sample(*vm).point;
+  for (int k = 1; k <= 3000; ++k) // 1.5 turns counter-clockwise, 0.18 deg per tick
+  {
+    const double a = 2 * kPi * 1.5 * k / 3000.0;
+    const Vec2 cursor = px(10 * std::cos(a), 10 * std::sin(a));
+    tracer.follow(*vm, cursor);
+    const AgentSample sm = tracer.sample(*vm);
+    EXPECT_LT((sm.screen_px - last).norm(), 0.5) << "jump at tick " << k;
+    EXPECT_LT((sm.screen_px - cursor).norm(), 0.3);
+    if (sm.point < previousPoint - n / 2)
+    {
+      ++wraps;
+    }
+    previousPoint = sm.point;
+    last = sm.screen_px;
+    angle = a;
+  }
+  EXPECT_EQ(wraps, 1);
+  EXPECT_GT(angle, 2 * kPi);
+  EXPECT_EQ(tracer.directionOfTravel(), 1);
+}
+
+TEST(Tracer, FollowsCursorIntoBranchAtBifurcationWithoutJump)
+{
+  // Trunk along x to the origin, two branches joining its last point: up-right and down-right.
+  QSkeleton s = straightLine({ -10, 0, 0 }, { 0, 0, 0 }, 0.25);
+  QSkeleton up = straightLine({ 0, 0, 0 }, { 10, 10, 0 }, 0.25);
+  QSkeleton down = straightLine({ 0, 0, 0 }, { 10, -10, 0 }, 0.25);
+  up.paths[0].id = 1;
+  down.paths[0].id = 2;
+  s.paths.push_back(up.paths[0]);
+  s.paths.push_back(down.paths[0]);
+  const int last = static_cast<int>(s.paths[0].points.size()) - 1;
+  join(s, 1, Junction::End::Head, 0, last);
+  join(s, 2, Junction::End::Head, 0, last);
+  ASSERT_EQ(s.validate(), "");
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  for (int branch : { 1, 2 })
+  {
+    Tracer tracer;
+    ASSERT_TRUE(tracer.tryContact(*vm, px(-8, 0)));
+    Vec2 previous = tracer.sample(*vm).screen_px;
+    const double sy = branch == 1 ? 1.0 : -1.0;
+    for (int k = 0; k <= 1600; ++k)
+    {
+      const double x = -8.0 + 16.0 * k / 1600.0;
+      const Vec2 cursor = x < 0 ? px(x, 0) : px(x, sy * x);
+      tracer.follow(*vm, cursor);
+      const AgentSample sm = tracer.sample(*vm);
+      // A corner may release at most the dead band (0.25 px) on top of the cursor's own step.
+      ASSERT_LT((sm.screen_px - previous).norm(), 0.25 + 0.06) << "jump at tick " << k;
+      previous = sm.screen_px;
+    }
+    EXPECT_EQ(vm->topology().pathOf(tracer.sample(*vm).point), branch);
+    EXPECT_NEAR(tracer.sample(*vm).position_World_mm.x, 8.0, 0.1);
+  }
+}
+
+TEST(Tracer, PassesThroughVesselSeenEndOn)
+{
+  // x from -5 to 0, then straight toward the viewer (along z, a single pixel on screen), then on.
+  QSkeleton s = straightLine({ -5, 0, 0 }, { 0, 0, 0 }, 0.25);
+  QSkeleton a = straightLine({ 0, 0, 0.25 }, { 0, 0, 5 }, 0.25);
+  QSkeleton b = straightLine({ 0.25, 0, 5 }, { 5, 0, 5 }, 0.25);
+  for (auto* q : { &a, &b })
+  {
+    for (auto& p : q->paths[0].points)
+    {
+      s.paths[0].points.push_back(p);
+    }
+  }
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  ASSERT_TRUE(tracer.tryContact(*vm, px(-4, 0)));
+  for (int k = 0; k <= 800; ++k)
+  {
+    tracer.follow(*vm, px(-4 + 8.0 * k / 800.0, 0));
+  }
+  EXPECT_NEAR(tracer.sample(*vm).position_World_mm.z, 5.0, 1e-9);
+  EXPECT_NEAR(tracer.sample(*vm).position_World_mm.x, 4.0, 0.07); // within the dead band
+}
+
+TEST(Tracer, NeverLeavesTheCenterline)
+{
+  // A wavy tree: a sine trunk and a branch; the cursor wanders randomly (seeded).
+  QSkeleton s = singlePath(
+    [](double t) {
+      return Vec3{ -30 + 60 * t, 5 * std::sin(6 * t), 8 * t };
+    },
+    400);
+  QSkeleton br = singlePath(
+    [](double t) {
+      return Vec3{ 0 + 10 * t, 5 * std::sin(3.0) + 20 * t, 4 };
+    },
+    120);
+  br.paths[0].id = 1;
+  s.paths.push_back(br.paths[0]);
+  join(s, 1, Junction::End::Head, 0, 200);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }), 20.0);
+  Tracer tracer;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> step(0.0, 1.5);
+  Vec2 cursor = vm->screen_px(100);
+  ASSERT_TRUE(tracer.tryContact(*vm, cursor));
+  double worst = 0.0;
+  for (int k = 0; k < 5000; ++k)
+  {
+    cursor = cursor + Vec2{ step(rng), step(rng) };
+    cursor.x = std::clamp(cursor.x, 250.0, 550.0);
+    cursor.y = std::clamp(cursor.y, 250.0, 450.0);
+    tracer.follow(*vm, cursor);
+    if (k % 10 == 0)
+    {
+      worst =
+        std::max(worst, distanceToGraph_mm(vm->topology(), tracer.sample(*vm).position_World_mm));
+    }
+  }
+  EXPECT_LT(worst, 1e-9);
+}
+
+} // namespace
+} // namespace vtouch
