@@ -1,0 +1,46 @@
+// Smoothing and differential geometry of a sampled space curve (a Q-skeleton path).
+// Plain C++: used by Logic/Skeleton after tracing, and by anything that edits a path.
+#pragma once
+
+#include "vtouchQSkeleton.h"
+
+#include <vector>
+
+namespace vtouch
+{
+
+/// Per-point result of computeCurveGeometry().
+struct CurveSample
+{
+  Vec3 position;          ///< smoothed position (same frame and unit as the input, mm)
+  Vec3 tangent;           ///< unit tangent toward increasing index
+  double curvature = 0.0; ///< 1/mm
+  double torsion = 0.0;   ///< 1/mm, signed (right-handed helix > 0)
+};
+
+/// Half widths (mm of arc length) of the local fits. A derivative of order k amplifies the
+/// sampling noise of a voxel curve about like 1/window^k, so each quantity gets its own window.
+struct CurveGeometryWindows
+{
+  double position_mm = 2.0;  ///< cubic fit for the smoothed position; <= 0: positions kept
+  double curvature_mm = 8.0; ///< quartic fit for tangent and curvature
+  double torsion_mm = 14.0;  ///< cubic fit for torsion (third derivative)
+};
+
+/// Smooths `points` and differentiates the smoothed curve.
+///
+/// At each point, weighted least-squares polynomials in arc length are fitted to the points within
+/// the windows (tricube weights; near the ends the window slides so it keeps at least 7 points).
+/// The value of the position fit is the smoothed position; the derivatives of the fits (the
+/// Savitzky-Golay differences of the smoothed curve) give tangent r'/|r'|, curvature
+/// |r' x r''| / |r'|^3 and torsion (r' x r'') . r''' / |r' x r''|^2. Polynomials reproduce the
+/// local shape without the shrinkage of a moving average, so a helix keeps its curvature and
+/// torsion. Curves of fewer than 3 points get chord tangents and zero curvature and torsion.
+std::vector<CurveSample> computeCurveGeometry(const std::vector<Vec3>& points,
+  const CurveGeometryWindows& windows);
+
+/// Applies computeCurveGeometry() to the positions of `path` in place (position, tangent,
+/// curvature, torsion); radius and label are left alone.
+void applyCurveGeometry(SkeletonPath& path, const CurveGeometryWindows& windows);
+
+} // namespace vtouch

@@ -1,0 +1,90 @@
+// Voxel coding on a sparse vessel mask (Zhou & Toga 1999; Yi & Hayward): the algorithmic core of
+// vtouch::VoxelCodingSkeletonFilter, kept free of ITK so it can be tested and profiled alone.
+//
+// Frames: every position here is in the *scaled index frame*, (i * sx, j * sy, k * sz) millimetres;
+// the filter maps it to world coordinates with the image origin and direction.
+#pragma once
+
+#include "vtouchSparseVesselMask.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vtouch
+{
+
+/// Thrown by VoxelCoder::run() when the progress callback asks to stop.
+class VoxelCodingAborted : public std::runtime_error
+{
+public:
+  VoxelCodingAborted()
+    : std::runtime_error("voxel coding aborted")
+  {
+  }
+};
+
+struct VoxelCodingParameters
+{
+  std::array<double, 3> spacing_mm{ 1.0, 1.0, 1.0 }; ///< voxel size per axis, > 0
+  /// A side branch shorter than this many local radii (of the vessel it joins) is a spur and is
+  /// pruned. Loop closures shorter than this are treated as noise of one front. Dimensionless.
+  double minimumBranchLength = 2.5;
+  /// Components with fewer vessel voxels are ignored when no seed is given. Voxels.
+  std::uint64_t minimumComponentSize = 100;
+  /// Thickness of the SS bands whose connected parts are the clusters; 0 = the largest spacing. mm.
+  double clusterWidth_mm = 0.0;
+  bool hasSeed = false;                    ///< skeletonize only the component of the seed
+  std::array<std::int64_t, 3> seedIndex{}; ///< seed voxel (root of the single-seed code)
+};
+
+struct RawSkeletonPath
+{
+  std::vector<std::array<std::int64_t, 3>> voxels; ///< 26-connected voxel chain, head -> tail
+  std::vector<std::array<double, 3>> center_mm;    ///< center-adjusted position per voxel
+  std::vector<double> radius_mm;                   ///< local radius from the BS code
+  int headJunction = -1;                           ///< index into RawSkeleton::junctions
+  int tailJunction = -1;
+};
+
+struct RawJunction
+{
+  int childPath = -1;
+  bool childTail = false; ///< false: the child's head attaches; true: its tail
+  int parentPath = -1;
+  int parentPoint = -1;
+};
+
+struct RawSkeleton
+{
+  std::vector<RawSkeletonPath> paths;
+  std::vector<RawJunction> junctions;
+  std::uint64_t vesselVoxels = 0;
+  int components = 0;        ///< components skeletonized
+  int loops = 0;             ///< loop closures found
+  std::size_t peakBytes = 0; ///< bookkeeping of the largest arrays (mask excluded)
+};
+
+/// Runs BS code, SS code, clustering, cluster graph, back-tracing, loop closing and spur pruning.
+/// Time and memory are linear in the number of vessel voxels (bucket queues, no heap, no dense
+/// per-volume arrays besides the caller's 1-bit mask and its rank index).
+class VoxelCoder
+{
+public:
+  /// `mask` must be finalized. Throws std::invalid_argument on an unusable setup.
+  VoxelCoder(const SparseVesselMask& mask, const VoxelCodingParameters& parameters);
+
+  /// `progress` (may be empty) receives values in [0,1]; returning false aborts
+  /// (VoxelCodingAborted).
+  RawSkeleton run(const std::function<bool(double)>& progress = {});
+
+private:
+  struct Impl;
+  const SparseVesselMask& Mask;
+  VoxelCodingParameters Parameters;
+};
+
+} // namespace vtouch

@@ -1,0 +1,150 @@
+// Voxel-coding Q-skeleton of a vessel network (Zhou & Toga 1999; Yi & Hayward), as an ITK filter.
+//
+// Input: a 3D scalar volume. The vessel is where the value lies in [LowerThreshold, UpperThreshold]
+// (a binary mask works with the defaults), optionally restricted to voxels of strong multi-scale
+// Hessian vesselness, and to the connected network of SeedPoint when one is set (seeded region
+// growing). Output: a vtouch::QSkeleton in the world frame of the volume (origin + direction *
+// (index * spacing)), one 26-connected voxel path per branch before smoothing, with radius,
+// tangent, curvature, torsion, labels and junctions (loop closures included).
+//
+// Memory grows with vessel voxels: a 1-bit mask with a rank index (1.5 bits per volume voxel) and
+// about 17 bytes per vessel voxel for the codes. The optional vesselness pre-filter is the
+// exception: it needs dense float images over the volume.
+#pragma once
+
+#include "vtouchQSkeletonObject.h"
+#include "vtouchVoxelCoding.h"
+
+#include <itkImage.h>
+#include <itkProcessObject.h>
+
+#include <limits>
+
+namespace vtouch
+{
+
+template<typename TInputImage>
+class VoxelCodingSkeletonFilter : public itk::ProcessObject
+{
+public:
+  ITK_DISALLOW_COPY_AND_MOVE(VoxelCodingSkeletonFilter);
+
+  using Self = VoxelCodingSkeletonFilter;
+  using Superclass = itk::ProcessObject;
+  using Pointer = itk::SmartPointer<Self>;
+  using ConstPointer = itk::SmartPointer<const Self>;
+
+  itkNewMacro(Self);
+  itkTypeMacro(VoxelCodingSkeletonFilter, ProcessObject);
+
+  using InputImageType = TInputImage;
+  using PixelType = typename InputImageType::PixelType;
+  using PointType = typename InputImageType::PointType;
+  using IndexType = typename InputImageType::IndexType;
+  static constexpr unsigned int ImageDimension = InputImageType::ImageDimension;
+  static_assert(ImageDimension == 3, "VoxelCodingSkeletonFilter needs a 3D image");
+  static_assert(std::is_arithmetic<PixelType>::value,
+    "VoxelCodingSkeletonFilter needs scalar pixels");
+
+  void SetInput(const InputImageType* image);
+  const InputImageType* GetInput() const;
+
+  /// The Q-skeleton (world frame, mm). Valid after Update().
+  QSkeletonObject* GetOutput();
+  const QSkeleton& GetSkeleton() const;
+  /// The voxel paths before smoothing, in the scaled index frame (index * spacing, mm).
+  const RawSkeleton& GetRawSkeleton() const { return this->m_RawSkeleton; }
+
+  /// Lowest value that counts as vessel (inclusive). Default 0.5: a 0/1 or 0/255 mask works as is.
+  itkSetMacro(LowerThreshold, double);
+  itkGetConstMacro(LowerThreshold, double);
+  /// Highest value that counts as vessel (inclusive). Default: the largest double.
+  itkSetMacro(UpperThreshold, double);
+  itkGetConstMacro(UpperThreshold, double);
+
+  /// World point (mm) inside the vessel network to extract; it is also the root of the single-seed
+  /// code. Setting it turns UseSeedPoint on. Without a seed every connected component of at least
+  /// MinimumComponentSize voxels is skeletonized from an automatic root at one of its extremities.
+  virtual void SetSeedPoint(const PointType& p);
+  itkGetConstReferenceMacro(SeedPoint, PointType);
+  itkSetMacro(UseSeedPoint, bool);
+  itkGetConstMacro(UseSeedPoint, bool);
+  itkBooleanMacro(UseSeedPoint);
+
+  /// Components smaller than this are ignored when no seed is set. Voxels. Default 100.
+  itkSetMacro(MinimumComponentSize, unsigned long);
+  itkGetConstMacro(MinimumComponentSize, unsigned long);
+  /// Side branches shorter than this many local radii of the vessel they join are spurs and are
+  /// pruned. Dimensionless, >= 0. Default 2.5.
+  itkSetMacro(MinimumBranchLength, double);
+  itkGetConstMacro(MinimumBranchLength, double);
+  /// Half width W (mm of arc length) of the local cubic fit that smooths the positions; tangent and
+  /// curvature use a quartic fit over 6 W and torsion a cubic fit over 7 W (higher derivatives
+  /// need more support). 0 = automatic: positions over 2 S, derivatives over 6 S and 7 S, with
+  /// S = max(2 voxels, median radius of the path). Negative = positions left at the
+  /// center-adjusted voxel positions (derivatives as automatic). Default 0.
+  itkSetMacro(SmoothingWindow, double);
+  itkGetConstMacro(SmoothingWindow, double);
+  /// Thickness (mm) of the single-seed code bands whose connected parts form the clusters.
+  /// 0 = automatic (the largest voxel side). Default 0.
+  itkSetMacro(ClusterWidth, double);
+  itkGetConstMacro(ClusterWidth, double);
+
+  /// Multiply the threshold mask by a multi-scale Hessian vesselness test (Frangi-type measure,
+  /// bright tubes) for raw intensity volumes. Default off.
+  itkSetMacro(UseVesselness, bool);
+  itkGetConstMacro(UseVesselness, bool);
+  itkBooleanMacro(UseVesselness);
+  /// Smallest and largest Gaussian scale of the vesselness measure, mm. Defaults 1 and 4.
+  itkSetMacro(VesselnessSigmaMinimum, double);
+  itkGetConstMacro(VesselnessSigmaMinimum, double);
+  itkSetMacro(VesselnessSigmaMaximum, double);
+  itkGetConstMacro(VesselnessSigmaMaximum, double);
+  /// Number of scales between the two (logarithmic steps). Default 4.
+  itkSetMacro(VesselnessNumberOfScales, unsigned int);
+  itkGetConstMacro(VesselnessNumberOfScales, unsigned int);
+  /// A voxel is vessel only if its vesselness is at least this fraction of the volume's maximum
+  /// vesselness. Dimensionless in [0, 1]. Default 0.05.
+  itkSetMacro(VesselnessThreshold, double);
+  itkGetConstMacro(VesselnessThreshold, double);
+
+  /// Number of vessel voxels of the last run, and the bytes used by the mask and the codes.
+  itkGetConstMacro(NumberOfVesselVoxels, unsigned long long);
+  itkGetConstMacro(CodeMemoryBytes, unsigned long long);
+
+protected:
+  VoxelCodingSkeletonFilter();
+  ~VoxelCodingSkeletonFilter() override = default;
+
+  void VerifyPreconditions() ITKv5_CONST override;
+  void GenerateData() override;
+  void PrintSelf(std::ostream& os, itk::Indent indent) const override;
+  itk::DataObject::Pointer MakeOutput(DataObjectPointerArraySizeType idx) override;
+  using Superclass::MakeOutput;
+
+private:
+  SparseVesselMask BuildMask() const;
+  IndexType SeedIndex(const SparseVesselMask& mask) const;
+  QSkeleton ToWorld(const RawSkeleton& raw) const;
+
+  double m_LowerThreshold{ 0.5 };
+  double m_UpperThreshold{ std::numeric_limits<double>::max() };
+  PointType m_SeedPoint{};
+  bool m_UseSeedPoint{ false };
+  unsigned long m_MinimumComponentSize{ 100 };
+  double m_MinimumBranchLength{ 2.5 };
+  double m_SmoothingWindow{ 0.0 };
+  double m_ClusterWidth{ 0.0 };
+  bool m_UseVesselness{ false };
+  double m_VesselnessSigmaMinimum{ 1.0 };
+  double m_VesselnessSigmaMaximum{ 4.0 };
+  unsigned int m_VesselnessNumberOfScales{ 4 };
+  double m_VesselnessThreshold{ 0.05 };
+  unsigned long long m_NumberOfVesselVoxels{ 0 };
+  unsigned long long m_CodeMemoryBytes{ 0 };
+  RawSkeleton m_RawSkeleton;
+};
+
+} // namespace vtouch
+
+#include "vtouchVoxelCodingSkeletonFilter.hxx"

@@ -1,0 +1,391 @@
+#pragma once
+
+#include "vtouchCurveGeometry.h"
+#include "vtouchVoxelCodingSkeletonFilter.h"
+
+#include <itkHessianToObjectnessMeasureImageFilter.h>
+#include <itkMultiScaleHessianBasedMeasureImageFilter.h>
+#include <itkSymmetricSecondRankTensor.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <type_traits>
+
+namespace vtouch
+{
+
+template<typename TInputImage>
+VoxelCodingSkeletonFilter<TInputImage>::VoxelCodingSkeletonFilter()
+{
+  this->SetNumberOfRequiredInputs(1);
+  this->SetNumberOfRequiredOutputs(1);
+  this->SetNthOutput(0, this->MakeOutput(0));
+  this->m_SeedPoint.Fill(0.0);
+}
+
+template<typename TInputImage>
+void VoxelCodingSkeletonFilter<TInputImage>::SetInput(const InputImageType* image)
+{
+  this->SetNthInput(0, const_cast<InputImageType*>(image));
+}
+
+template<typename TInputImage>
+auto VoxelCodingSkeletonFilter<TInputImage>::GetInput() const -> const InputImageType*
+{
+  return itkDynamicCastInDebugMode<const InputImageType*>(this->GetPrimaryInput());
+}
+
+template<typename TInputImage>
+QSkeletonObject* VoxelCodingSkeletonFilter<TInputImage>::GetOutput()
+{
+  return static_cast<QSkeletonObject*>(this->GetPrimaryOutput());
+}
+
+template<typename TInputImage>
+const QSkeleton& VoxelCodingSkeletonFilter<TInputImage>::GetSkeleton() const
+{
+  return static_cast<const QSkeletonObject*>(this->GetPrimaryOutput())->Get();
+}
+
+template<typename TInputImage>
+itk::DataObject::Pointer VoxelCodingSkeletonFilter<TInputImage>::MakeOutput(
+  DataObjectPointerArraySizeType)
+{
+  return QSkeletonObject::New().GetPointer();
+}
+
+template<typename TInputImage>
+void VoxelCodingSkeletonFilter<TInputImage>::SetSeedPoint(const PointType& p)
+{
+  if (this->m_SeedPoint != p || !this->m_UseSeedPoint)
+  {
+    this->m_SeedPoint = p;
+    this->m_UseSeedPoint = true;
+    this->Modified();
+  }
+}
+
+template<typename TInputImage>
+void VoxelCodingSkeletonFilter<TInputImage>::VerifyPreconditions() ITKv5_CONST
+{
+  Superclass::VerifyPreconditions();
+  const double lo = this->m_LowerThreshold;
+  const double hi = this->m_UpperThreshold;
+  if (std::isnan(lo) || std::isnan(hi) || lo > hi)
+  {
+    itkExceptionMacro("LowerThreshold (" << lo << ") must not exceed UpperThreshold (" << hi
+                                         << ") and neither may be NaN");
+  }
+  if (!std::isfinite(this->m_MinimumBranchLength) || this->m_MinimumBranchLength < 0.0 ||
+      this->m_MinimumBranchLength > 1000.0)
+  {
+    itkExceptionMacro(
+      "MinimumBranchLength must be in [0, 1000] local radii, got " << this->m_MinimumBranchLength);
+  }
+  if (!std::isfinite(this->m_SmoothingWindow) || !std::isfinite(this->m_ClusterWidth) ||
+      this->m_ClusterWidth < 0.0)
+  {
+    itkExceptionMacro("SmoothingWindow must be finite and ClusterWidth finite and >= 0");
+  }
+  if (this->m_UseVesselness &&
+      (!(this->m_VesselnessSigmaMinimum > 0.0) ||
+        !(this->m_VesselnessSigmaMaximum >= this->m_VesselnessSigmaMinimum) ||
+        !std::isfinite(this->m_VesselnessSigmaMaximum) || this->m_VesselnessNumberOfScales < 1 ||
+        !(this->m_VesselnessThreshold >= 0.0 && this->m_VesselnessThreshold <= 1.0)))
+  {
+    itkExceptionMacro("Vesselness needs 0 < SigmaMinimum <= SigmaMaximum (mm), at least one "
+                      "scale and a threshold in [0, 1]");
+  }
+  const InputImageType* input = this->GetInput();
+  const auto size = input->GetLargestPossibleRegion().GetSize();
+  for (unsigned int a = 0; a < ImageDimension; ++a)
+  {
+    if (size[a] < 1 || !(input->GetSpacing()[a] > 0.0) || !std::isfinite(input->GetSpacing()[a]))
+    {
+      itkExceptionMacro("the volume must have at least one voxel per axis and positive spacing");
+    }
+  }
+  if (this->m_UseSeedPoint)
+  {
+    for (unsigned int a = 0; a < ImageDimension; ++a)
+    {
+      if (!std::isfinite(this->m_SeedPoint[a]))
+      {
+        itkExceptionMacro("SeedPoint is not finite: " << this->m_SeedPoint);
+      }
+    }
+    IndexType index;
+    if (!input->TransformPhysicalPointToIndex(this->m_SeedPoint, index))
+    {
+      itkExceptionMacro("SeedPoint " << this->m_SeedPoint << " is outside the volume");
+    }
+  }
+}
+
+template<typename TInputImage>
+SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
+{
+  const InputImageType* input = this->GetInput();
+  const auto size = input->GetLargestPossibleRegion().GetSize();
+  if (input->GetBufferedRegion() != input->GetLargestPossibleRegion())
+  {
+    itkExceptionMacro("the whole volume must be buffered");
+  }
+  const std::array<std::int64_t, 3> dims{ static_cast<std::int64_t>(size[0]),
+    static_cast<std::int64_t>(size[1]),
+    static_cast<std::int64_t>(size[2]) };
+  SparseVesselMask mask(dims);
+  const PixelType* voxels = input->GetBufferPointer();
+  const std::uint64_t n = mask.voxelCount();
+
+  using RealImageType = itk::Image<float, 3>;
+  typename RealImageType::Pointer vesselness;
+  float vesselnessCut = 0.0F;
+  if (this->m_UseVesselness)
+  {
+    using HessianPixelType = itk::SymmetricSecondRankTensor<double, 3>;
+    using HessianImageType = itk::Image<HessianPixelType, 3>;
+    using ObjectnessType =
+      itk::HessianToObjectnessMeasureImageFilter<HessianImageType, RealImageType>;
+    using MultiScaleType = itk::
+      MultiScaleHessianBasedMeasureImageFilter<InputImageType, HessianImageType, RealImageType>;
+    auto objectness = ObjectnessType::New();
+    objectness->SetObjectDimension(1);
+    objectness->SetBrightObject(true);
+    auto multiScale = MultiScaleType::New();
+    multiScale->SetInput(input);
+    multiScale->SetHessianToMeasureFilter(objectness);
+    multiScale->SetSigmaMinimum(this->m_VesselnessSigmaMinimum);
+    multiScale->SetSigmaMaximum(this->m_VesselnessSigmaMaximum);
+    multiScale->SetNumberOfSigmaSteps(this->m_VesselnessNumberOfScales);
+    multiScale->SetSigmaStepMethodToLogarithmic();
+    multiScale->GenerateScalesOutputOff();
+    multiScale->GenerateHessianOutputOff();
+    multiScale->Update();
+    vesselness = multiScale->GetOutput();
+    const float* v = vesselness->GetBufferPointer();
+    const float vmax = *std::max_element(v, v + n);
+    vesselnessCut = static_cast<float>(this->m_VesselnessThreshold) * vmax;
+  }
+  const float* vness = vesselness ? vesselness->GetBufferPointer() : nullptr;
+  for (std::uint64_t i = 0; i < n; ++i)
+  {
+    const double value = static_cast<double>(voxels[i]);
+    if constexpr (std::is_floating_point<PixelType>::value)
+    {
+      if (!std::isfinite(value))
+      {
+        itkExceptionMacro("the volume holds a NaN or infinite voxel (linear index " << i << ")");
+      }
+    }
+    if (value >= this->m_LowerThreshold && value <= this->m_UpperThreshold &&
+        (!vness || vness[i] >= vesselnessCut))
+    {
+      mask.set(i);
+    }
+  }
+  mask.finalize();
+  if (mask.vesselCount() == 0)
+  {
+    itkExceptionMacro("no voxel lies in [" << this->m_LowerThreshold << ", "
+                                           << this->m_UpperThreshold
+                                           << "]: the vessel mask is empty");
+  }
+  if (mask.vesselCount() == n)
+  {
+    itkExceptionMacro("every voxel lies in [" << this->m_LowerThreshold << ", "
+                                              << this->m_UpperThreshold
+                                              << "]: an all-vessel mask has no centerline");
+  }
+  return mask;
+}
+
+template<typename TInputImage>
+auto VoxelCodingSkeletonFilter<TInputImage>::SeedIndex(const SparseVesselMask& mask) const
+  -> IndexType
+{
+  const InputImageType* input = this->GetInput();
+  IndexType index;
+  if (!input->TransformPhysicalPointToIndex(this->m_SeedPoint, index))
+  {
+    itkExceptionMacro("SeedPoint " << this->m_SeedPoint << " is outside the volume");
+  }
+  const auto& d = mask.dims();
+  // A click may land a voxel off the vessel: accept the nearest vessel voxel of the 3x3x3 block.
+  double best = std::numeric_limits<double>::infinity();
+  IndexType found = index;
+  for (int dk = -1; dk <= 1; ++dk)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di)
+      {
+        const std::int64_t i = index[0] + di, j = index[1] + dj, k = index[2] + dk;
+        if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2] ||
+            !mask.test(static_cast<std::uint64_t>(i + d[0] * (j + d[1] * k))))
+        {
+          continue;
+        }
+        const double dist = di * di + dj * dj + dk * dk;
+        if (dist < best)
+        {
+          best = dist;
+          found = IndexType{ { i, j, k } };
+        }
+      }
+  if (!std::isfinite(best))
+  {
+    itkExceptionMacro("SeedPoint " << this->m_SeedPoint << " (voxel " << index
+                                   << ") is not inside any vessel: its value is outside ["
+                                   << this->m_LowerThreshold << ", " << this->m_UpperThreshold
+                                   << "]");
+  }
+  return found;
+}
+
+template<typename TInputImage>
+QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw) const
+{
+  const InputImageType* input = this->GetInput();
+  const auto& origin = input->GetOrigin();
+  const auto& dir = input->GetDirection();
+  double maxSpacing = 0.0;
+  for (unsigned int a = 0; a < 3; ++a)
+  {
+    maxSpacing = std::max(maxSpacing, static_cast<double>(input->GetSpacing()[a]));
+  }
+  QSkeleton s;
+  s.paths.resize(raw.paths.size());
+  for (std::size_t p = 0; p < raw.paths.size(); ++p)
+  {
+    const RawSkeletonPath& rp = raw.paths[p];
+    SkeletonPath& path = s.paths[p];
+    path.id = static_cast<int>(p);
+    path.head.junction = rp.headJunction;
+    path.tail.junction = rp.tailJunction;
+    path.points.resize(rp.voxels.size());
+    for (std::size_t i = 0; i < rp.voxels.size(); ++i)
+    {
+      const auto& c = rp.center_mm[i];
+      double w[3];
+      for (unsigned int r = 0; r < 3; ++r)
+      {
+        w[r] = origin[r] + dir[r][0] * c[0] + dir[r][1] * c[1] + dir[r][2] * c[2];
+      }
+      path.points[i].position_World_mm = Vec3{ w[0], w[1], w[2] };
+      path.points[i].radius_mm = rp.radius_mm[i];
+    }
+    std::vector<double> radii = rp.radius_mm;
+    std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+    // Windows scale with the vessel: positions keep junction corners, derivatives need more
+    // support.
+    const double scale = std::max(2.0 * maxSpacing, radii[radii.size() / 2]);
+    CurveGeometryWindows windows;
+    windows.position_mm = this->m_SmoothingWindow > 0.0   ? this->m_SmoothingWindow
+                          : this->m_SmoothingWindow < 0.0 ? 0.0
+                                                          : 2.0 * scale;
+    const double base = this->m_SmoothingWindow > 0.0 ? this->m_SmoothingWindow : scale;
+    windows.curvature_mm = 6.0 * base;
+    windows.torsion_mm = 7.0 * base;
+    applyCurveGeometry(path, windows);
+    path.points.front().label =
+      rp.headJunction >= 0 ? PointLabel::Bifurcation : PointLabel::EndPoint;
+    path.points.back().label =
+      rp.tailJunction >= 0 ? PointLabel::Bifurcation : PointLabel::EndPoint;
+  }
+  for (const RawJunction& rj : raw.junctions)
+  {
+    Junction j;
+    j.childPath = rj.childPath;
+    j.childEnd = rj.childTail ? Junction::End::Tail : Junction::End::Head;
+    j.parentPath = rj.parentPath;
+    j.parentPoint = rj.parentPoint;
+    s.junctions.push_back(j);
+    SkeletonPoint& parent = s.paths[rj.parentPath].points[rj.parentPoint];
+    parent.label = PointLabel::Bifurcation;
+    // Each path is smoothed alone: make the attached end coincide with its parent point again.
+    SkeletonPath& child = s.paths[rj.childPath];
+    SkeletonPoint& end = rj.childTail ? child.points.back() : child.points.front();
+    end.position_World_mm = parent.position_World_mm;
+  }
+  return s;
+}
+
+template<typename TInputImage>
+void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
+{
+  QSkeletonObject* output = this->GetOutput();
+  output->Get() = QSkeleton{};
+  this->m_RawSkeleton = RawSkeleton{};
+  this->UpdateProgress(0.0F);
+  const SparseVesselMask mask = this->BuildMask();
+  this->m_NumberOfVesselVoxels = mask.vesselCount();
+
+  VoxelCodingParameters par;
+  const auto& spacing = this->GetInput()->GetSpacing();
+  par.spacing_mm = { spacing[0], spacing[1], spacing[2] };
+  par.minimumBranchLength = this->m_MinimumBranchLength;
+  par.minimumComponentSize = this->m_MinimumComponentSize;
+  par.clusterWidth_mm = this->m_ClusterWidth;
+  if (this->m_UseSeedPoint)
+  {
+    const IndexType seed = this->SeedIndex(mask);
+    par.hasSeed = true;
+    par.seedIndex = { seed[0], seed[1], seed[2] };
+  }
+  try
+  {
+    VoxelCoder coder(mask, par);
+    this->m_RawSkeleton = coder.run(
+      [this](double p)
+      {
+        this->UpdateProgress(static_cast<float>(0.05 + 0.9 * p));
+        return !this->GetAbortGenerateData();
+      });
+  }
+  catch (const VoxelCodingAborted&)
+  {
+    itk::ProcessAborted e(__FILE__, __LINE__);
+    e.SetLocation(ITK_LOCATION);
+    e.SetDescription("VoxelCodingSkeletonFilter aborted");
+    throw e;
+  }
+  catch (const std::invalid_argument& e)
+  {
+    itkExceptionMacro(<< e.what());
+  }
+  catch (const std::bad_alloc&)
+  {
+    itkExceptionMacro(
+      "not enough memory for the voxel codes of " << mask.vesselCount() << " vessel voxels");
+  }
+  this->m_CodeMemoryBytes = mask.memoryBytes() + this->m_RawSkeleton.peakBytes;
+  if (this->m_RawSkeleton.paths.empty())
+  {
+    itkExceptionMacro("no vessel component of at least " << this->m_MinimumComponentSize
+                                                         << " voxels has a centerline");
+  }
+  output->Get() = this->ToWorld(this->m_RawSkeleton);
+  this->UpdateProgress(1.0F);
+}
+
+template<typename TInputImage>
+void VoxelCodingSkeletonFilter<TInputImage>::PrintSelf(std::ostream& os, itk::Indent indent) const
+{
+  Superclass::PrintSelf(os, indent);
+  os << indent << "LowerThreshold: " << this->m_LowerThreshold << "\n";
+  os << indent << "UpperThreshold: " << this->m_UpperThreshold << "\n";
+  os << indent << "UseSeedPoint: " << this->m_UseSeedPoint << "\n";
+  os << indent << "SeedPoint: " << this->m_SeedPoint << "\n";
+  os << indent << "MinimumComponentSize: " << this->m_MinimumComponentSize << "\n";
+  os << indent << "MinimumBranchLength: " << this->m_MinimumBranchLength << "\n";
+  os << indent << "SmoothingWindow: " << this->m_SmoothingWindow << "\n";
+  os << indent << "ClusterWidth: " << this->m_ClusterWidth << "\n";
+  os << indent << "UseVesselness: " << this->m_UseVesselness << "\n";
+  os << indent << "VesselnessSigmaMinimum: " << this->m_VesselnessSigmaMinimum << "\n";
+  os << indent << "VesselnessSigmaMaximum: " << this->m_VesselnessSigmaMaximum << "\n";
+  os << indent << "VesselnessNumberOfScales: " << this->m_VesselnessNumberOfScales << "\n";
+  os << indent << "VesselnessThreshold: " << this->m_VesselnessThreshold << "\n";
+  os << indent << "NumberOfVesselVoxels: " << this->m_NumberOfVesselVoxels << "\n";
+}
+
+} // namespace vtouch

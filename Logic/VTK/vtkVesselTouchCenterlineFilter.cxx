@@ -1,0 +1,327 @@
+#include "vtkVesselTouchCenterlineFilter.h"
+
+#include "vtouchVoxelCodingSkeletonFilter.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMatrix3x3.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <itkCommand.h>
+#include <itkImportImageFilter.h>
+
+#include <algorithm>
+#include <new>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkVesselTouchCenterlineFilter);
+
+namespace
+{
+struct Settings
+{
+  double lower, upper;
+  bool useSeed;
+  double seed[3];
+  int minimumComponentSize;
+  double minimumBranchLength, smoothing;
+  bool useVesselness;
+  double sigmaMin, sigmaMax;
+  int scales;
+  double vesselnessThreshold;
+};
+
+/// Wraps the VTK scalars as an ITK image (no copy) with the VTK geometry.
+template<typename T>
+typename itk::Image<T, 3>::Pointer importImage(vtkImageData* image, T* data)
+{
+  using Import = itk::ImportImageFilter<T, 3>;
+  auto importer = Import::New();
+  int dims[3];
+  image->GetDimensions(dims);
+  typename Import::SizeType size;
+  typename Import::RegionType region;
+  double origin[3], spacing[3];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  typename Import::DirectionType direction;
+  vtkMatrix3x3* m = image->GetDirectionMatrix();
+  for (int r = 0; r < 3; ++r)
+  {
+    size[r] = static_cast<itk::SizeValueType>(dims[r]);
+    for (int c = 0; c < 3; ++c)
+    {
+      direction[r][c] = m ? m->GetElement(r, c) : (r == c ? 1.0 : 0.0);
+    }
+  }
+  region.SetSize(size);
+  importer->SetRegion(region);
+  importer->SetOrigin(origin);
+  importer->SetSpacing(spacing);
+  importer->SetDirection(direction);
+  importer->SetImportPointer(
+    data, static_cast<itk::SizeValueType>(dims[0]) * dims[1] * dims[2], false);
+  importer->Update();
+  return importer->GetOutput();
+}
+
+/// Runs the ITK filter; throws itk::ExceptionObject (itk::ProcessAborted when aborted).
+template<typename T>
+vtouch::QSkeleton skeletonize(vtkVesselTouchCenterlineFilter* self,
+  vtkImageData* image,
+  T* data,
+  const Settings& s)
+{
+  using Image = itk::Image<T, 3>;
+  using Filter = vtouch::VoxelCodingSkeletonFilter<Image>;
+  typename Image::Pointer itkImage = importImage<T>(image, data);
+  auto filter = Filter::New();
+  filter->SetInput(itkImage);
+  filter->SetLowerThreshold(s.lower);
+  filter->SetUpperThreshold(s.upper);
+  if (s.useSeed)
+  {
+    typename Filter::PointType p;
+    p[0] = s.seed[0];
+    p[1] = s.seed[1];
+    p[2] = s.seed[2];
+    filter->SetSeedPoint(p);
+  }
+  filter->SetMinimumComponentSize(static_cast<unsigned long>(std::max(0, s.minimumComponentSize)));
+  filter->SetMinimumBranchLength(s.minimumBranchLength);
+  filter->SetSmoothingWindow(s.smoothing);
+  filter->SetUseVesselness(s.useVesselness);
+  filter->SetVesselnessSigmaMinimum(s.sigmaMin);
+  filter->SetVesselnessSigmaMaximum(s.sigmaMax);
+  filter->SetVesselnessNumberOfScales(static_cast<unsigned int>(std::max(0, s.scales)));
+  filter->SetVesselnessThreshold(s.vesselnessThreshold);
+  // Progress to VTK; VTK's abort flag to ITK.
+  auto progress = itk::CStyleCommand::New();
+  struct Context
+  {
+    vtkVesselTouchCenterlineFilter* self;
+    Filter* filter;
+  } context{ self, filter.GetPointer() };
+  progress->SetClientData(&context);
+  progress->SetCallback(
+    [](itk::Object*, const itk::EventObject&, void* data)
+    {
+      auto* c = static_cast<Context*>(data);
+      c->self->UpdateProgress(c->filter->GetProgress());
+      if (c->self->GetAbortExecute())
+      {
+        c->filter->SetAbortGenerateData(true);
+      }
+    });
+  filter->AddObserver(itk::ProgressEvent(), progress);
+  filter->Update();
+  return filter->GetSkeleton();
+}
+
+void fillOutput(const vtouch::QSkeleton& s, vtkPolyData* output)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkFloatArray> radius, tangent, curvature, torsion;
+  vtkNew<vtkUnsignedCharArray> label;
+  vtkNew<vtkIntArray> pathId, pointIndex;
+  radius->SetName("Radius");
+  tangent->SetName("Tangent");
+  tangent->SetNumberOfComponents(3);
+  curvature->SetName("Curvature");
+  torsion->SetName("Torsion");
+  label->SetName("BifurcationLabel");
+  pathId->SetName("PathId");
+  pointIndex->SetName("PointIndex");
+  for (const vtouch::SkeletonPath& path : s.paths)
+  {
+    lines->InsertNextCell(static_cast<vtkIdType>(path.points.size()));
+    for (std::size_t i = 0; i < path.points.size(); ++i)
+    {
+      const vtouch::SkeletonPoint& q = path.points[i];
+      lines->InsertCellPoint(points->InsertNextPoint(
+        q.position_World_mm.x, q.position_World_mm.y, q.position_World_mm.z));
+      radius->InsertNextValue(static_cast<float>(q.radius_mm));
+      tangent->InsertNextTuple3(q.tangent_World.x, q.tangent_World.y, q.tangent_World.z);
+      curvature->InsertNextValue(static_cast<float>(q.curvature_per_mm));
+      torsion->InsertNextValue(static_cast<float>(q.torsion_per_mm));
+      label->InsertNextValue(static_cast<unsigned char>(q.label));
+      pathId->InsertNextValue(path.id);
+      pointIndex->InsertNextValue(static_cast<int>(i));
+    }
+  }
+  output->SetPoints(points);
+  output->SetLines(lines);
+  vtkPointData* pd = output->GetPointData();
+  for (vtkDataArray* a :
+    std::vector<vtkDataArray*>{ radius, tangent, curvature, torsion, label, pathId, pointIndex })
+  {
+    pd->AddArray(a);
+  }
+  const auto intArray = [](const char* name)
+  {
+    vtkNew<vtkIntArray> a;
+    a->SetName(name);
+    return a;
+  };
+  auto head = intArray("PathHeadJunction");
+  auto tail = intArray("PathTailJunction");
+  for (const vtouch::SkeletonPath& path : s.paths)
+  {
+    head->InsertNextValue(path.head.junction);
+    tail->InsertNextValue(path.tail.junction);
+  }
+  auto child = intArray("JunctionChildPath");
+  auto childEnd = intArray("JunctionChildEnd");
+  auto parent = intArray("JunctionParentPath");
+  auto parentPoint = intArray("JunctionParentPoint");
+  for (const vtouch::Junction& j : s.junctions)
+  {
+    child->InsertNextValue(j.childPath);
+    childEnd->InsertNextValue(j.childEnd == vtouch::Junction::End::Tail ? 1 : 0);
+    parent->InsertNextValue(j.parentPath);
+    parentPoint->InsertNextValue(j.parentPoint);
+  }
+  vtkFieldData* fd = output->GetFieldData();
+  for (vtkIntArray* a :
+    { head.Get(), tail.Get(), child.Get(), childEnd.Get(), parent.Get(), parentPoint.Get() })
+  {
+    fd->AddArray(a);
+  }
+}
+} // namespace
+
+vtkVesselTouchCenterlineFilter::vtkVesselTouchCenterlineFilter()
+{
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+int vtkVesselTouchCenterlineFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("VesselCenterline needs a vtkImageData input.");
+    return 1;
+  }
+  output->Initialize();
+  int dims[3];
+  input->GetDimensions(dims);
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+  {
+    vtkErrorMacro("VesselCenterline needs a 3D volume; the input is " << dims[0] << " x " << dims[1]
+                                                                      << " x " << dims[2] << ".");
+    return 1;
+  }
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  if (!scalars)
+  {
+    scalars = input->GetPointData()->GetScalars(); // no array selected: the active scalars
+  }
+  if (!scalars)
+  {
+    vtkErrorMacro("The input has no point scalars to threshold.");
+    return 1;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    vtkErrorMacro("The input scalars have " << scalars->GetNumberOfComponents()
+                                            << " components; VesselCenterline needs one.");
+    return 1;
+  }
+  const Settings s{ this->LowerThreshold,
+    this->UpperThreshold,
+    this->UseSeedPoint,
+    { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] },
+    this->MinimumComponentSize,
+    this->MinimumBranchLength,
+    this->SmoothingWindow,
+    this->UseVesselness,
+    this->VesselnessSigmaMinimum,
+    this->VesselnessSigmaMaximum,
+    this->VesselnessNumberOfScales,
+    this->VesselnessThreshold };
+  try
+  {
+    vtouch::QSkeleton skeleton;
+    void* data = scalars->GetVoidPointer(0);
+    switch (scalars->GetDataType())
+    {
+      case VTK_FLOAT:
+        skeleton = skeletonize(this, input, static_cast<float*>(data), s);
+        break;
+      case VTK_UNSIGNED_CHAR:
+        skeleton = skeletonize(this, input, static_cast<unsigned char*>(data), s);
+        break;
+      case VTK_SHORT:
+        skeleton = skeletonize(this, input, static_cast<short*>(data), s);
+        break;
+      case VTK_UNSIGNED_SHORT:
+        skeleton = skeletonize(this, input, static_cast<unsigned short*>(data), s);
+        break;
+      default:
+      {
+        // Other types: one float copy of the volume.
+        std::vector<float> copy(static_cast<std::size_t>(scalars->GetNumberOfTuples()));
+        for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+        {
+          copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
+        }
+        skeleton = skeletonize(this, input, copy.data(), s);
+      }
+    }
+    fillOutput(skeleton, output);
+  }
+  catch (const itk::ProcessAborted&)
+  {
+    output->Initialize();
+    vtkWarningMacro("VesselCenterline aborted.");
+  }
+  catch (const itk::ExceptionObject& e)
+  {
+    output->Initialize();
+    vtkErrorMacro("VesselCenterline: " << e.GetDescription());
+  }
+  catch (const std::bad_alloc&)
+  {
+    output->Initialize();
+    vtkErrorMacro("VesselCenterline: not enough memory for this volume.");
+  }
+  return 1;
+}
+
+void vtkVesselTouchCenterlineFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "LowerThreshold: " << this->LowerThreshold << "\n";
+  os << indent << "UpperThreshold: " << this->UpperThreshold << "\n";
+  os << indent << "UseSeedPoint: " << this->UseSeedPoint << "\n";
+  os << indent << "SeedPoint: " << this->SeedPoint[0] << " " << this->SeedPoint[1] << " "
+     << this->SeedPoint[2] << "\n";
+  os << indent << "MinimumComponentSize: " << this->MinimumComponentSize << "\n";
+  os << indent << "MinimumBranchLength: " << this->MinimumBranchLength << "\n";
+  os << indent << "SmoothingWindow: " << this->SmoothingWindow << "\n";
+  os << indent << "UseVesselness: " << this->UseVesselness << "\n";
+}

@@ -1,0 +1,91 @@
+// VesselCenterline: the voxel-coding Q-skeleton of a vessel volume as polylines.
+//
+// Input: vtkImageData with one scalar component (any type). Output: vtkPolyData with one polyline
+// cell per skeleton path, points in the input's world frame (origin + direction * index * spacing),
+// and point arrays Radius (mm), Tangent (3, unit), Curvature (1/mm), Torsion (1/mm),
+// BifurcationLabel (0 ordinary, 1 bifurcation, 2 end point), PathId, PointIndex.
+// Topology in field data (one tuple per path or per junction, int arrays):
+//   PathHeadJunction, PathTailJunction  junction index at each end of each path, -1 when free;
+//   JunctionChildPath, JunctionChildEnd (0 head, 1 tail), JunctionParentPath, JunctionParentPoint:
+//   the end of the child path attaches to that point of the parent path (loops are junctions too).
+// Bad input: vtkErrorMacro with the reason and an empty output.
+#ifndef vtkVesselTouchCenterlineFilter_h
+#define vtkVesselTouchCenterlineFilter_h
+
+#include "vtkPolyDataAlgorithm.h"
+#include "vtkVesselTouchLogicModule.h" // for export macro
+
+class VTKVESSELTOUCHLOGIC_EXPORT vtkVesselTouchCenterlineFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkVesselTouchCenterlineFilter* New();
+  vtkTypeMacro(vtkVesselTouchCenterlineFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The vessel is where the scalar lies in [LowerThreshold, UpperThreshold] (defaults 0.5 and
+  /// 1e300: a binary mask works as is).
+  vtkSetMacro(LowerThreshold, double);
+  vtkGetMacro(LowerThreshold, double);
+  vtkSetMacro(UpperThreshold, double);
+  vtkGetMacro(UpperThreshold, double);
+
+  /// World point (mm) choosing the vessel network and the root of the code (used when
+  /// UseSeedPoint is on; default off: every component of at least MinimumComponentSize voxels).
+  vtkSetVector3Macro(SeedPoint, double);
+  vtkGetVector3Macro(SeedPoint, double);
+  vtkSetMacro(UseSeedPoint, bool);
+  vtkGetMacro(UseSeedPoint, bool);
+  vtkBooleanMacro(UseSeedPoint, bool);
+
+  /// Smallest component skeletonized without a seed, voxels (default 100).
+  vtkSetMacro(MinimumComponentSize, int);
+  vtkGetMacro(MinimumComponentSize, int);
+  /// Side branches shorter than this many local radii are pruned (default 2.5).
+  vtkSetMacro(MinimumBranchLength, double);
+  vtkGetMacro(MinimumBranchLength, double);
+  /// Position smoothing half window, mm (0 = automatic, negative = none; default 0).
+  vtkSetMacro(SmoothingWindow, double);
+  vtkGetMacro(SmoothingWindow, double);
+
+  /// Multi-scale Hessian vesselness pre-filter for raw intensity volumes (default off), its
+  /// smallest and largest scale in mm (1, 4), number of scales (4) and relative threshold (0.05).
+  vtkSetMacro(UseVesselness, bool);
+  vtkGetMacro(UseVesselness, bool);
+  vtkBooleanMacro(UseVesselness, bool);
+  vtkSetMacro(VesselnessSigmaMinimum, double);
+  vtkGetMacro(VesselnessSigmaMinimum, double);
+  vtkSetMacro(VesselnessSigmaMaximum, double);
+  vtkGetMacro(VesselnessSigmaMaximum, double);
+  vtkSetMacro(VesselnessNumberOfScales, int);
+  vtkGetMacro(VesselnessNumberOfScales, int);
+  vtkSetMacro(VesselnessThreshold, double);
+  vtkGetMacro(VesselnessThreshold, double);
+
+protected:
+  vtkVesselTouchCenterlineFilter();
+  ~vtkVesselTouchCenterlineFilter() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+private:
+  vtkVesselTouchCenterlineFilter(const vtkVesselTouchCenterlineFilter&) = delete;
+  void operator=(const vtkVesselTouchCenterlineFilter&) = delete;
+
+  double LowerThreshold = 0.5;
+  double UpperThreshold = 1e300;
+  double SeedPoint[3] = { 0.0, 0.0, 0.0 };
+  bool UseSeedPoint = false;
+  int MinimumComponentSize = 100;
+  double MinimumBranchLength = 2.5;
+  double SmoothingWindow = 0.0;
+  bool UseVesselness = false;
+  double VesselnessSigmaMinimum = 1.0;
+  double VesselnessSigmaMaximum = 4.0;
+  int VesselnessNumberOfScales = 4;
+  double VesselnessThreshold = 0.05;
+};
+
+#endif

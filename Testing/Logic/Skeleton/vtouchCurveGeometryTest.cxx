@@ -1,0 +1,90 @@
+// Smoothing and differential geometry of sampled curves.
+#include "vtouchCurveGeometry.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace vtouch
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+std::vector<Vec3> helix(double a, double c, double step, double noise, std::uint32_t seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, noise);
+  std::vector<Vec3> p;
+  const double speed = std::sqrt(a * a + c * c);
+  for (double s = 0.0; s < 3 * 2 * kPi * speed; s += step)
+  {
+    const double t = s / speed;
+    p.push_back({ a * std::cos(t) + n(rng), a * std::sin(t) + n(rng), c * t + n(rng) });
+  }
+  return p;
+}
+
+TEST(CurveGeometry, HelixCurvatureAndTorsionMatchAnalyticValues)
+{
+  const double a = 20.0, c = 4.0;
+  const std::vector<CurveSample> g = computeCurveGeometry(helix(a, c, 1.0, 0.0, 1), {});
+  const double kappa = a / (a * a + c * c), tau = c / (a * a + c * c);
+  for (std::size_t i = 20; i + 20 < g.size(); ++i)
+  {
+    EXPECT_NEAR(g[i].curvature, kappa, 0.01 * kappa);
+    EXPECT_NEAR(g[i].torsion, tau, 0.02 * tau);
+    EXPECT_NEAR(g[i].tangent.norm(), 1.0, 1e-9);
+  }
+}
+
+TEST(CurveGeometry, NoisyHelixStaysWithinFivePercentAtTheMedian)
+{
+  const double a = 20.0, c = 4.0;
+  CurveGeometryWindows w;
+  w.position_mm = 4.0;
+  w.curvature_mm = 24.0;
+  w.torsion_mm = 28.0;
+  const std::vector<CurveSample> g = computeCurveGeometry(helix(a, c, 1.0, 0.15, 7), w);
+  std::vector<double> k, t;
+  for (std::size_t i = g.size() / 10; i + g.size() / 10 < g.size(); ++i)
+  {
+    k.push_back(g[i].curvature);
+    t.push_back(g[i].torsion);
+  }
+  std::sort(k.begin(), k.end());
+  std::sort(t.begin(), t.end());
+  const double kappa = a / (a * a + c * c), tau = c / (a * a + c * c);
+  EXPECT_NEAR(k[k.size() / 2], kappa, 0.05 * kappa);
+  EXPECT_NEAR(t[t.size() / 2], tau, 0.05 * tau);
+}
+
+TEST(CurveGeometry, StraightLineHasZeroCurvatureAndTorsion)
+{
+  std::vector<Vec3> p;
+  for (int i = 0; i < 40; ++i)
+  {
+    p.push_back({ 1.0 * i, 0.5 * i, -0.25 * i });
+  }
+  const std::vector<CurveSample> g = computeCurveGeometry(p, {});
+  for (const CurveSample& s : g)
+  {
+    EXPECT_NEAR(s.curvature, 0.0, 1e-9);
+    EXPECT_NEAR(s.torsion, 0.0, 1e-9);
+    EXPECT_NEAR(s.tangent.dot(Vec3{ 1.0, 0.5, -0.25 } * (1.0 / std::sqrt(1.3125))), 1.0, 1e-9);
+  }
+}
+
+TEST(CurveGeometry, ShortCurvesKeepTheirPoints)
+{
+  const std::vector<Vec3> p{ { 0, 0, 0 }, { 1, 0, 0 } };
+  const std::vector<CurveSample> g = computeCurveGeometry(p, {});
+  ASSERT_EQ(g.size(), 2U);
+  EXPECT_NEAR(g[1].position.x, 1.0, 1e-12);
+  EXPECT_NEAR(g[0].tangent.x, 1.0, 1e-12);
+  EXPECT_TRUE(computeCurveGeometry({}, {}).empty());
+}
+
+} // namespace
+} // namespace vtouch

@@ -1,0 +1,174 @@
+// Accuracy and topology of the voxel-coding Q-skeleton on phantoms with analytic centerlines.
+#include "vtouchVoxelCodingSkeletonFilter.h"
+
+#include "vtouchSkeletonTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+namespace vtouch
+{
+namespace
+{
+using test::FloatImage;
+using Filter = VoxelCodingSkeletonFilter<FloatImage>;
+
+struct SkeletonRun
+{
+  QSkeleton skeleton;
+  RawSkeleton raw;
+  test::Accuracy accuracy;
+  test::Topology topology;
+  test::Topology analyticTopology;
+};
+
+PhantomSpec phantom(PhantomShape shape, int n)
+{
+  PhantomSpec spec;
+  spec.shape = shape;
+  spec.dimensions = { n, n, n };
+  return spec;
+}
+
+SkeletonRun runPhantom(const PhantomSpec& spec, double minimumBranchLength = 2.5)
+{
+  PhantomGenerator generator(spec);
+  EXPECT_TRUE(generator.ok()) << generator.error();
+  auto image = test::phantomImage(generator);
+  auto filter = Filter::New();
+  filter->SetInput(image);
+  filter->SetLowerThreshold(test::wallThreshold(spec));
+  filter->SetMinimumBranchLength(minimumBranchLength);
+  filter->Update();
+  SkeletonRun run;
+  run.skeleton = filter->GetSkeleton();
+  run.raw = filter->GetRawSkeleton();
+  const double voxel = std::min({ spec.spacing_mm[0], spec.spacing_mm[1], spec.spacing_mm[2] });
+  run.accuracy = test::measure(run.skeleton, generator, 1.5 * voxel);
+  const double merge = 3.0 * spec.radiusFraction * spec.referenceLength_mm();
+  run.topology = test::topology(run.skeleton, merge);
+  run.analyticTopology = test::topology(generator.centerline(), merge);
+  std::cout << toString(spec.shape) << ": paths " << run.skeleton.paths.size() << " points "
+            << run.accuracy.outputPoints << " mean " << run.accuracy.mean_mm / voxel << " vox, p95 "
+            << run.accuracy.p95_mm / voxel << " vox, coverage " << run.accuracy.coverage
+            << ", radius error " << run.accuracy.radiusError_mm / voxel << " vox; ends "
+            << run.topology.endPoints << " bifurcations " << run.topology.bifurcations << " loops "
+            << run.topology.loops << "\n";
+  if (const char* dir = std::getenv("VTOUCH_SKELETON_DUMP"))
+  {
+    std::ofstream f(std::string(dir) + "/" + toString(spec.shape) + ".csv");
+    for (const SkeletonPath& path : run.skeleton.paths)
+      for (const SkeletonPoint& q : path.points)
+        f << "out," << path.id << "," << q.position_World_mm.x << "," << q.position_World_mm.y
+          << "," << q.position_World_mm.z << "," << q.radius_mm << "," << q.curvature_per_mm << ","
+          << q.torsion_per_mm << "\n";
+    for (const SkeletonPath& path : generator.centerline().paths)
+      for (const SkeletonPoint& q : path.points)
+        f << "ref," << path.id << "," << q.position_World_mm.x << "," << q.position_World_mm.y
+          << "," << q.position_World_mm.z << "," << q.radius_mm << "," << q.curvature_per_mm << ","
+          << q.torsion_per_mm << "\n";
+    for (std::size_t p = 0; p < run.raw.paths.size(); ++p)
+      for (const auto& c : run.raw.paths[p].center_mm)
+        f << "raw," << p << "," << c[0] << "," << c[1] << "," << c[2] << ",0,0,0\n";
+  }
+  return run;
+}
+
+void expectAccurate(const SkeletonRun& run, double voxel_mm)
+{
+  EXPECT_EQ(run.skeleton.validate(), "");
+  EXPECT_EQ(test::check26Connected(run.raw, { 1, 1, 1 }), "");
+  EXPECT_LE(run.accuracy.mean_mm, 0.35 * voxel_mm);
+  EXPECT_LE(run.accuracy.p95_mm, 1.0 * voxel_mm);
+  EXPECT_GE(run.accuracy.coverage, 0.99);
+  EXPECT_LE(run.accuracy.radiusError_mm, 1.0 * voxel_mm);
+}
+
+TEST(VoxelCodingSkeletonFilter, StraightTubeGivesOnePathWithTwoEnds)
+{
+  const SkeletonRun run = runPhantom(phantom(PhantomShape::StraightTube, 64));
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.skeleton.paths.size(), 1U);
+  EXPECT_EQ(run.topology.endPoints, 2);
+  EXPECT_EQ(run.topology.bifurcations, 0);
+  EXPECT_EQ(run.topology.loops, 0);
+}
+
+TEST(VoxelCodingSkeletonFilter, HelixMatchesAnalyticCurvatureAndTorsion)
+{
+  const PhantomSpec spec = phantom(PhantomShape::Helix, 96);
+  const SkeletonRun run = runPhantom(spec);
+  expectAccurate(run, 1.0);
+  ASSERT_EQ(run.skeleton.paths.size(), 1U);
+  EXPECT_EQ(run.topology.endPoints, 2);
+  const double n = spec.referenceLength_mm();
+  const double a = spec.helixRadiusFraction * n;
+  const double c = spec.helixPitchFraction * n / (2.0 * 3.14159265358979323846);
+  const double kappa = a / (a * a + c * c);
+  const double tau = c / (a * a + c * c);
+  // Away from the ends: drop 10% of the arc on each side.
+  const auto& pts = run.skeleton.paths[0].points;
+  std::vector<double> k, t;
+  for (std::size_t i = pts.size() / 10; i < pts.size() - pts.size() / 10; ++i)
+  {
+    k.push_back(pts[i].curvature_per_mm);
+    t.push_back(std::abs(pts[i].torsion_per_mm));
+  }
+  std::sort(k.begin(), k.end());
+  std::sort(t.begin(), t.end());
+  const double kMedian = k[k.size() / 2];
+  const double tMedian = t[t.size() / 2];
+  std::cout << "helix curvature " << kMedian << " (analytic " << kappa << "), torsion " << tMedian
+            << " (analytic " << tau << ")\n";
+  EXPECT_NEAR(kMedian, kappa, 0.05 * kappa);
+  EXPECT_NEAR(tMedian, tau, 0.05 * tau);
+}
+
+TEST(VoxelCodingSkeletonFilter, YBifurcationHasThreeEndsAndOneBifurcation)
+{
+  const SkeletonRun run = runPhantom(phantom(PhantomShape::YBifurcation, 80));
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.topology.endPoints, 3);
+  EXPECT_EQ(run.topology.bifurcations, 1);
+  EXPECT_EQ(run.topology.loops, 0);
+  EXPECT_EQ(run.analyticTopology.bifurcations, 1);
+}
+
+TEST(VoxelCodingSkeletonFilter, TreeOfDepthThreeHasFiveEndsAndThreeBifurcations)
+{
+  PhantomSpec spec = phantom(PhantomShape::Tree, 96);
+  spec.treeRadiusFractions = { 0.055, 0.045, 0.035 };
+  const SkeletonRun run = runPhantom(spec);
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.topology.endPoints, 5);
+  EXPECT_EQ(run.topology.bifurcations, 3);
+  EXPECT_EQ(run.topology.loops, 0);
+  EXPECT_EQ(run.analyticTopology.endPoints, 5);
+}
+
+TEST(VoxelCodingSkeletonFilter, LoopNetworkComesOutAsOneLoop)
+{
+  const SkeletonRun run = runPhantom(phantom(PhantomShape::LoopNetwork, 96));
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.topology.loops, 1);
+  EXPECT_EQ(run.topology.endPoints, 4);
+  EXPECT_EQ(run.topology.bifurcations, 4);
+  EXPECT_EQ(run.analyticTopology.loops, 1);
+}
+
+TEST(VoxelCodingSkeletonFilter, ColumnOfFourByFourVoxelsIsNotEmpty)
+{
+  PhantomSpec spec = phantom(PhantomShape::Column, 24);
+  spec.dimensions = { 24, 24, 100 };
+  const SkeletonRun run = runPhantom(spec);
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.skeleton.paths.size(), 1U);
+  EXPECT_EQ(run.topology.endPoints, 2);
+}
+
+} // namespace
+} // namespace vtouch

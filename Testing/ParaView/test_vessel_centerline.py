@@ -1,0 +1,77 @@
+"""VesselCenterline: phantoms to polylines with geometry arrays and topology, and clear errors."""
+
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from vtouch_testing import Check, plugin_path  # noqa: E402
+
+from paraview import servermanager, simple  # noqa: E402
+from paraview.vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
+
+check = Check("VesselCenterline")
+simple.LoadPlugin(plugin_path(), ns=globals())
+
+ARRAYS = ("Radius", "Tangent", "Curvature", "Torsion", "BifurcationLabel", "PathId", "PointIndex")
+TOPOLOGY = ("PathHeadJunction", "PathTailJunction", "JunctionChildPath", "JunctionChildEnd",
+            "JunctionParentPath", "JunctionParentPoint")
+
+
+def centerline(shape, **kwargs):
+    phantom = VesselPhantom(Shape=shape, Dimensions=[64, 64, 64], NoiseStandardDeviation=0.0,  # noqa: F821
+                            OutputScalarType="Float")
+    filt = VesselCenterline(Input=phantom, LowerThreshold=550.0, **kwargs)  # noqa: F821
+    filt.UpdatePipeline()
+    return servermanager.Fetch(filt), servermanager.Fetch(phantom, idx=1)
+
+
+def free_ends(poly):
+    fd = poly.GetFieldData()
+    head = vtk_to_numpy(fd.GetArray("PathHeadJunction"))
+    tail = vtk_to_numpy(fd.GetArray("PathTailJunction"))
+    labels = vtk_to_numpy(poly.GetPointData().GetArray("BifurcationLabel"))
+    return int((head < 0).sum() + (tail < 0).sum()), int((labels == 2).sum())
+
+
+# A Y: two polylines, three free ends, one junction; every array present and sane.
+poly, analytic = centerline("Y bifurcation")
+check.equal(poly.GetNumberOfLines(), 2, "Y gives two paths")
+for name in ARRAYS:
+    check.true(poly.GetPointData().GetArray(name) is not None, "point array %s" % name)
+for name in TOPOLOGY:
+    check.true(poly.GetFieldData().GetArray(name) is not None, "field array %s" % name)
+check.equal(poly.GetFieldData().GetArray("JunctionChildPath").GetNumberOfTuples(), 1,
+            "Y has one junction")
+ends, labelled = free_ends(poly)
+check.equal(ends, 3, "Y has three free ends")
+check.equal(labelled, 3, "three points labelled as end points")
+tangent = vtk_to_numpy(poly.GetPointData().GetArray("Tangent"))
+norms = (tangent ** 2).sum(axis=1) ** 0.5
+check.true(abs(norms - 1.0).max() < 1e-3, "tangents are unit vectors")
+radius = vtk_to_numpy(poly.GetPointData().GetArray("Radius"))
+check.true(radius.min() > 0 and radius.max() < 10, "radii are plausible (%g..%g)"
+           % (radius.min(), radius.max()))
+# Points lie on the analytic centerline (world frame).
+from vtkmodules.vtkCommonDataModel import vtkPointLocator  # noqa: E402
+locator = vtkPointLocator()
+locator.SetDataSet(analytic)
+locator.BuildLocator()
+worst = 0.0
+for i in range(0, poly.GetNumberOfPoints()):
+    p = poly.GetPoint(i)
+    q = analytic.GetPoint(locator.FindClosestPoint(p))
+    worst = max(worst, sum((a - b) ** 2 for a, b in zip(p, q)) ** 0.5)
+check.true(worst < 2.5, "every point within 2.5 mm of the analytic centerline (worst %.2f)" % worst)
+
+# A loop network comes out with a loop: junctions = paths - components + loops.
+poly, _ = centerline("Loop network")
+junctions = poly.GetFieldData().GetArray("JunctionChildPath").GetNumberOfTuples()
+check.equal(junctions - poly.GetNumberOfLines() + 1, 1, "loop network has one loop")
+
+# Bad input: thresholds that select nothing give an empty output and an error, not a crash.
+phantom = VesselPhantom(Dimensions=[32, 32, 32])  # noqa: F821
+bad = VesselCenterline(Input=phantom, LowerThreshold=1e9)  # noqa: F821
+bad.UpdatePipeline()
+check.equal(servermanager.Fetch(bad).GetNumberOfPoints(), 0, "empty mask gives empty output")
+
+check.finish()
