@@ -12,6 +12,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vtouch
@@ -66,6 +67,8 @@ struct RawSkeleton
   int components = 0;        ///< components skeletonized
   int loops = 0;             ///< loop closures found
   std::size_t peakBytes = 0; ///< bookkeeping of the largest arrays (mask excluded)
+  /// Wall time per stage (name, seconds), accumulated over components: for profiling.
+  std::vector<std::pair<std::string, double>> stageSeconds;
 };
 
 /// Runs BS code, SS code, clustering, cluster graph, back-tracing, loop closing and spur pruning.

@@ -3,7 +3,8 @@
 //
 //   vtouchSkeletonBenchmark phantom <Helix|Tree> <nx> <ny> <nz> <outdir>
 //       writes <outdir>/mask.raw (uint8, x fastest), <outdir>/analytic.csv (x,y,z mm) and runs the
-//       filter, writing <outdir>/voxelcoding.csv (x,y,z mm) and one JSON line on stdout.
+//       filter, writing <outdir>/voxelcoding.csv (x,y,z mm, radius mm, path id) and one JSON line
+//       on stdout.
 //   vtouchSkeletonBenchmark image <file.mha> <lower> <upper> <outdir>
 //       same for an image file (mask.raw, voxelcoding.csv; no analytic centerline).
 #include "vtouchVoxelCodingSkeletonFilter.h"
@@ -76,13 +77,18 @@ int run(Image* image,
   const auto t1 = std::chrono::steady_clock::now();
   const long long peakKb = statusKb("VmHWM:");
   const vtouch::QSkeleton& s = filter->GetSkeleton();
+  // Stage profile on stderr (the JSON line on stdout stays one line).
+  for (const auto& stage : filter->GetRawSkeleton().stageSeconds)
+  {
+    std::fprintf(stderr, "stage %-12s %.4f s\n", stage.first.c_str(), stage.second);
+  }
   std::ofstream csv(outdir + "/voxelcoding.csv");
   for (const auto& path : s.paths)
   {
     for (const auto& q : path.points)
     {
       csv << q.position_World_mm.x << "," << q.position_World_mm.y << "," << q.position_World_mm.z
-          << "\n";
+          << "," << q.radius_mm << "," << path.id << "\n";
     }
   }
   const auto size = image->GetLargestPossibleRegion().GetSize();

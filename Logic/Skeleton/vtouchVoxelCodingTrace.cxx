@@ -1,0 +1,374 @@
+// Voxel coding stages 5-6: center-adjusted back-tracing, paths, end trimming.
+#include "vtouchVoxelCodingImpl.h"
+
+namespace vtouch
+{
+
+int VoxelCoder::Impl::appendPoint(RawSkeletonPath& path,
+  const std::array<std::int64_t, 3>& target,
+  const std::array<double, 3>& center,
+  double radius)
+{
+  if (!path.voxels.empty())
+  {
+    std::array<std::int64_t, 3> cur = path.voxels.back();
+    if (cur == target)
+    {
+      return static_cast<int>(path.voxels.size()) - 1;
+    }
+    const std::int64_t steps = std::max(
+      { std::abs(target[0] - cur[0]), std::abs(target[1] - cur[1]), std::abs(target[2] - cur[2]) });
+    const std::array<double, 3> from = path.center_mm.back();
+    const double r0 = path.radius_mm.back();
+    for (std::int64_t s = 1; s < steps; ++s)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        cur[a] += (target[a] > cur[a]) - (target[a] < cur[a]);
+      }
+      const double t = static_cast<double>(s) / static_cast<double>(steps);
+      path.voxels.push_back(cur);
+      path.center_mm.push_back({ from[0] + t * (center[0] - from[0]),
+        from[1] + t * (center[1] - from[1]),
+        from[2] + t * (center[2] - from[2]) });
+      path.radius_mm.push_back(r0 + t * (radius - r0));
+    }
+  }
+  path.voxels.push_back(target);
+  path.center_mm.push_back(center);
+  path.radius_mm.push_back(radius);
+  return static_cast<int>(path.voxels.size()) - 1;
+}
+
+std::array<double, 3> VoxelCoder::Impl::adjustedCenter(std::uint32_t lin)
+{
+  const StageTimer timer{ *this, "center" };
+  const std::uint32_t cluster = clusterOf(lin);
+  const std::array<double, 3> c0 = centerOf(lin);
+  const double reach = 1.25 * bs[mask.rank(lin)] + 0.5 * bandWidth;
+  const double reach2 = reach * reach;
+  scratch.clear();
+  scratch.push_back(lin);
+  flags[mask.rank(lin)] |= kRegion;
+  double sum[3] = { 0.0, 0.0, 0.0 };
+  for (std::size_t q = 0; q < scratch.size(); ++q)
+  {
+    const std::array<double, 3> p = centerOf(scratch[q]);
+    for (int a = 0; a < 3; ++a)
+    {
+      sum[a] += p[a];
+    }
+    forNeighbours(scratch[q],
+      [&](std::uint64_t u, int, std::uint32_t ru)
+      {
+        if (!(flags[ru] & kRegion) && (aux[ru] & ~kLabelled) == cluster &&
+            distance2(centerOf(static_cast<std::uint32_t>(u)), c0) <= reach2)
+        {
+          flags[ru] |= kRegion;
+          scratch.push_back(static_cast<std::uint32_t>(u));
+        }
+      });
+  }
+  for (std::uint32_t v : scratch)
+  {
+    flags[mask.rank(v)] &= static_cast<std::uint8_t>(~kRegion);
+  }
+  const double n = static_cast<double>(scratch.size());
+  return { sum[0] / n, sum[1] / n, sum[2] / n };
+}
+
+std::pair<int, int> VoxelCoder::Impl::touchedSkeleton(std::uint32_t lin) const
+{
+  if (flags[mask.rank(lin)] & kSkeleton)
+  {
+    return skeletonVoxel.at(lin);
+  }
+  std::pair<int, int> hit{ -1, -1 };
+  forNeighbours(lin,
+    [&](std::uint64_t u, int, std::uint32_t ru)
+    {
+      if (hit.first < 0 && (flags[ru] & kSkeleton))
+      {
+        hit = skeletonVoxel.at(static_cast<std::uint32_t>(u));
+      }
+    });
+  return hit;
+}
+
+VoxelCoder::Impl::Trace VoxelCoder::Impl::descend(std::uint32_t start,
+  float ignoreAbove,
+  std::size_t patience) const
+{
+  Trace t;
+  std::uint32_t v = start;
+  std::uint32_t lastCluster = std::numeric_limits<std::uint32_t>::max();
+  std::size_t markedRun = 0;
+  while (true)
+  {
+    const std::uint32_t rv = mask.rank(v);
+    if (ss[rv] <= ignoreAbove)
+    {
+      const std::pair<int, int> hit = touchedSkeleton(v);
+      if (hit.first >= 0)
+      {
+        t.path = hit.first;
+        t.point = hit.second;
+        break;
+      }
+    }
+    if (!t.voxels.empty())
+    {
+      t.length += distance(centerOf(t.voxels.back()), centerOf(v));
+    }
+    t.voxels.push_back(v);
+    const std::uint32_t c = clusterOf(v);
+    if (c != lastCluster)
+    {
+      lastCluster = c;
+      markedRun = clusters[c].path >= 0 ? markedRun + 1 : 0;
+      if (markedRun > patience && ss[rv] <= ignoreAbove)
+      {
+        t.path = clusters[c].path;
+        t.point = clusters[c].point;
+        break;
+      }
+    }
+    std::uint32_t best = v;
+    float bestBs = -1.0F;
+    float bestSs = ss[rv];
+    forNeighbours(v,
+      [&](std::uint64_t u, int, std::uint32_t ru)
+      {
+        if (ss[ru] < ss[rv] && (bs[ru] > bestBs || (bs[ru] == bestBs && ss[ru] < bestSs)))
+        {
+          best = static_cast<std::uint32_t>(u);
+          bestBs = bs[ru];
+          bestSs = ss[ru];
+        }
+      });
+    if (best == v)
+    {
+      break; // no lower neighbour: the root
+    }
+    v = best;
+  }
+  return t;
+}
+
+void VoxelCoder::Impl::markPoint(int path, int point, std::uint32_t lin)
+{
+  const std::uint32_t r = mask.rank(lin);
+  if (!(flags[r] & kSkeleton))
+  {
+    flags[r] |= kSkeleton;
+    skeletonVoxel[lin] = { path, point };
+  }
+  Cluster& c = clusters[clusterOf(lin)];
+  if (c.path < 0)
+  {
+    c.path = path;
+    c.point = point;
+  }
+}
+
+void VoxelCoder::Impl::emitPath(const Trace& t, bool startOnBorder, int tailPath, int tailPoint)
+{
+  const int id = static_cast<int>(out.paths.size());
+  out.paths.emplace_back();
+  closedEnd.push_back({ false, tailPath < 0 && !startOnBorder });
+  if (t.path >= 0)
+  {
+    const RawSkeletonPath& parent = out.paths[t.path];
+    const auto voxel = parent.voxels[t.point];
+    const auto center = parent.center_mm[t.point];
+    const double radius = parent.radius_mm[t.point];
+    RawSkeletonPath& path = out.paths[id];
+    path.voxels.push_back(voxel);
+    path.center_mm.push_back(center);
+    path.radius_mm.push_back(radius);
+    out.junctions.push_back({ id, false, t.path, t.point });
+    path.headJunction = static_cast<int>(out.junctions.size()) - 1;
+  }
+  else
+  {
+    closedEnd.back()[0] = !clusters[clusterOf(t.voxels.back())].onBorder;
+  }
+  for (std::size_t i = t.voxels.size(); i-- > 0;)
+  {
+    const std::uint32_t lin = t.voxels[i];
+    const int point =
+      appendPoint(out.paths[id], voxelArray(lin), adjustedCenter(lin), radiusAt(lin));
+    markPoint(id, point, lin);
+  }
+  if (tailPath >= 0)
+  {
+    RawSkeletonPath& path = out.paths[id];
+    const RawSkeletonPath& parent = out.paths[tailPath];
+    appendPoint(
+      path, parent.voxels[tailPoint], parent.center_mm[tailPoint], parent.radius_mm[tailPoint]);
+    out.junctions.push_back({ id, true, tailPath, tailPoint });
+    path.tailJunction = static_cast<int>(out.junctions.size()) - 1;
+  }
+}
+
+void VoxelCoder::Impl::trimClosedEnds(std::size_t firstPath)
+{
+  std::vector<char> pinned;
+  for (std::size_t p = firstPath; p < out.paths.size(); ++p)
+  {
+    RawSkeletonPath& path = out.paths[p];
+    pinned.assign(path.voxels.size(), 0);
+    for (const RawJunction& j : out.junctions)
+    {
+      if (j.parentPath == static_cast<int>(p))
+      {
+        pinned[j.parentPoint] = 1;
+      }
+    }
+    // Drop the end points that lie inside the inscribed ball of a point further in.
+    const auto trimCount = [&](bool fromTail)
+    {
+      const std::size_t n = path.voxels.size();
+      const auto at = [&](std::size_t k) { return fromTail ? n - 1 - k : k; };
+      const std::array<double, 3> end = path.center_mm[at(0)];
+      const double tolerance = 0.5 * minSpacing + 0.1 * path.radius_mm[at(n / 2)];
+      std::size_t best = 0;
+      for (std::size_t k = 1; k + 1 < n && !pinned[at(k - 1)]; ++k)
+      {
+        const double d = distance(path.center_mm[at(k)], end);
+        if (d > 3.0 * (path.radius_mm[at(k)] + tolerance))
+        {
+          break;
+        }
+        if (d <= path.radius_mm[at(k)] + tolerance)
+        {
+          best = k;
+        }
+      }
+      return best;
+    };
+    if (closedEnd[p][1] && path.tailJunction < 0)
+    {
+      const std::size_t k = trimCount(true);
+      path.voxels.resize(path.voxels.size() - k);
+      path.center_mm.resize(path.center_mm.size() - k);
+      path.radius_mm.resize(path.radius_mm.size() - k);
+    }
+    if (closedEnd[p][0] && path.headJunction < 0)
+    {
+      const std::size_t k = trimCount(false);
+      path.voxels.erase(path.voxels.begin(), path.voxels.begin() + static_cast<std::ptrdiff_t>(k));
+      path.center_mm.erase(
+        path.center_mm.begin(), path.center_mm.begin() + static_cast<std::ptrdiff_t>(k));
+      path.radius_mm.erase(
+        path.radius_mm.begin(), path.radius_mm.begin() + static_cast<std::ptrdiff_t>(k));
+      for (RawJunction& j : out.junctions)
+      {
+        if (j.parentPath == static_cast<int>(p))
+        {
+          j.parentPoint -= static_cast<int>(k);
+        }
+      }
+    }
+  }
+}
+
+void VoxelCoder::Impl::traceComponent()
+{
+  const StageTimer timer{ *this, "trace(all)" };
+  // Tips: clusters without higher neighbours (local maxima of the SS code), farthest first.
+  std::vector<std::uint32_t> tips;
+  std::uint32_t root = 0;
+  for (std::uint32_t c = 0; c < clusters.size(); ++c)
+  {
+    if (clusters[c].higher.empty() && clusters[c].band > 0)
+    {
+      tips.push_back(c);
+    }
+    if (clusters[c].band == 0)
+    {
+      root = c;
+    }
+  }
+  std::sort(tips.begin(),
+    tips.end(),
+    [&](std::uint32_t a, std::uint32_t b)
+    { return clusters[a].band != clusters[b].band ? clusters[a].band > clusters[b].band : a < b; });
+  const std::size_t firstPath = out.paths.size();
+  for (std::uint32_t tip : tips)
+  {
+    if (clusters[tip].path >= 0)
+    {
+      continue;
+    }
+    const std::size_t patience = patienceFor(clusters[tip]);
+    Trace t = descend(tipStart(clusters[tip]), kInf, patience);
+    if (t.path < 0 && out.paths.size() > firstPath)
+    {
+      t.path = clusters[root].path; // reached the root beside the first path
+      t.point = clusters[root].point;
+    }
+    if (t.voxels.empty())
+    {
+      continue;
+    }
+    if (t.path >= 0)
+    {
+      const double radius = nearbyRadius(t.path, t.point);
+      const double tipToJunction =
+        t.length + distance(centerOf(t.voxels.back()), out.paths[t.path].center_mm[t.point]);
+      if (tipToJunction < std::max(par.minimumBranchLength * radius, 2.0 * bandWidth))
+      {
+        continue; // a spur
+      }
+    }
+    else if (t.voxels.size() < 2)
+    {
+      continue;
+    }
+    emitPath(t, clusters[tip].onBorder, -1, -1);
+  }
+  if (out.paths.size() > firstPath)
+  {
+    closeLoops();
+    trimClosedEnds(firstPath);
+  }
+}
+
+std::uint32_t VoxelCoder::Impl::tipStart(const Cluster& c) const
+{
+  const std::array<double, 3> m = c.centroid();
+  std::int64_t v[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    v[a] = std::clamp<std::int64_t>(std::llround(m[a] / sp[a]),
+      0,
+      (a == 0    ? nx
+        : a == 1 ? ny
+                 : nz) -
+        1);
+  }
+  const std::uint64_t lin = static_cast<std::uint64_t>(v[0] + nx * (v[1] + ny * v[2]));
+  return mask.test(lin) ? static_cast<std::uint32_t>(lin) : c.bestVoxel;
+}
+
+double VoxelCoder::Impl::nearbyRadius(int path, int point) const
+{
+  const RawSkeletonPath& p = out.paths[path];
+  const double r0 = p.radius_mm[point];
+  double r = r0;
+  for (int step : { -1, 1 })
+  {
+    for (int i = point + step; i >= 0 && i < static_cast<int>(p.radius_mm.size()); i += step)
+    {
+      if (distance(p.center_mm[i], p.center_mm[point]) > r0)
+      {
+        break;
+      }
+      r = std::max(r, p.radius_mm[i]);
+    }
+  }
+  return r;
+}
+
+} // namespace vtouch
