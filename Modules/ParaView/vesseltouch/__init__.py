@@ -11,6 +11,9 @@ from .mip import ShowAsMIP
 from .info import version, build_info
 from .orientation import ShowPatientOrientation, HidePatientOrientation
 from .scene import OpenDefaultScene, DEFAULT_PHANTOM
+from .session import HapticSession, logic
+from .agent_view import AgentOverlay
 
 __all__ = ["ShowAsMIP", "OpenDefaultScene", "DEFAULT_PHANTOM", "ShowPatientOrientation",
-           "HidePatientOrientation", "version", "build_info"]
+           "HidePatientOrientation", "version", "build_info", "AgentOverlay", "HapticSession",
+           "logic"]

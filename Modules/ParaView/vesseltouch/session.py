@@ -1,0 +1,363 @@
+"""The VesselTouch haptic session from ParaView's Python shell and pvpython.
+
+A thin, documented layer over the ``VesselTouchHapticSession`` proxy (the VTK class
+``vtkVesselTouchHapticSession``, which owns the C++ ``vtouch::HapticSession``). Load the plugin
+first, then::
+
+    from paraview.simple import *
+    LoadPlugin("/path/to/VesselTouch.so", ns=globals())
+    import vesseltouch
+
+    phantom = VesselPhantom(Shape="Helix")
+    s = vesseltouch.HapticSession(phantom)          # a VesselPhantom: its centerline (port 1)
+    s.ResetCamera(direction=(0, 1, 0), view_up=(0, 0, 1))  # the helix seen from the side
+    s.SetDevice("simulated")
+    s.SetForceLaw("LDGF", k=0.3, lambda_mm=0.005)
+    s.SetZoom(1.0)
+    s.SetHandSweep(path=0, speed_mm_per_s=100.0)    # a scripted hand following the vessel
+    s.RunOffline(6.0, rate_Hz=1000.0)               # deterministic, simulated time
+    log = s.GetLog()                                # dict of NumPy arrays
+    print(log["time"].shape, log["force"].max(), s.GetAgentState()["state"])
+
+``vesseltouch.logic()`` returns one module-level session so that the GUI panel and the console
+drive the same object (like ``slicer.modules.<name>.logic()``).
+
+Units: millimetres, newtons, seconds, pixels (screen origin at the bottom-left corner).
+Errors (no centerline, an unusable camera, a device that does not open) raise ``RuntimeError``
+with the session's reason; the C++ side also reports them with vtkErrorMacro.
+"""
+
+import math
+
+from paraview import servermanager, simple
+
+__all__ = ["HapticSession", "logic", "FORCE_LAWS", "DEVICES"]
+
+#: Force law names accepted by :meth:`HapticSession.SetForceLaw` -> the ``ForceLaw`` value.
+FORCE_LAWS = {"ldgf": 0, "changeofheight": 1, "coh": 1, "lateralgradient": 2, "lateral": 2,
+              "constraintproxy": 3, "proxy": 3, "none": 4}
+#: Device names accepted by :meth:`HapticSession.SetDevice` -> the ``DeviceType`` value.
+DEVICES = {"simulated": 0, "pointer": 1, "mouse": 1, "replay": 2, "hid": 3}
+
+_STATISTICS = ("nominal_rate_Hz", "achieved_rate_Hz", "ticks", "overruns", "skipped_deadlines",
+               "period_error_p50_us", "period_error_p99_us", "period_error_p999_us",
+               "period_error_max_us", "tick_cost_p50_us", "tick_cost_p99_us", "tick_cost_max_us")
+_LOG_COLUMNS = {"Time": "time", "Hand": "hand", "Cursor": "cursor", "State": "state",
+                "Path": "path", "Point": "point", "Position": "position",
+                "TargetForce": "target_force", "Force": "force"}
+
+
+def _key(name):
+    return "".join(c for c in str(name).lower() if c.isalnum())
+
+
+def _centerline_port(centerline):
+    """A proxy or output port (servermanager.OutputPort) -> the port carrying the centerline."""
+    if centerline is None:
+        return None
+    if getattr(centerline, "Port", 0) == 0 and centerline.GetXMLName() == "VesselPhantom":
+        return servermanager.OutputPort(centerline, 1)  # port 1: the analytic centerline
+    return centerline
+
+
+class HapticSession(object):
+    """One haptic session: centerline + camera + device + force law + zones + zoom.
+
+    ``centerline``: a VesselCenterline proxy, a VesselPhantom proxy (its port 1 is used) or any
+    output port producing the centerline polydata; may be given later with SetCenterline().
+    ``view``: a render view whose camera and size the session copies (SetCameraFromView);
+    without one the camera looks at the centerline along -z (ResetCamera).
+    ``proxy``: wrap an existing VesselTouchHapticSession proxy instead of creating one.
+    """
+
+    def __init__(self, centerline=None, view=None, proxy=None, registrationName=None):
+        if proxy is None:
+            proxy = self._create_proxy(_centerline_port(centerline), registrationName)
+        self.proxy = proxy
+        if centerline is not None:
+            if view is not None:
+                self.SetCameraFromView(view)
+            else:
+                self.ResetCamera()
+
+    @staticmethod
+    def _create_proxy(port, registrationName):
+        pxm = servermanager.ProxyManager()
+        if not pxm.SMProxyManager.GetProxyDefinitionManager().HasDefinition(
+                "filters", "VesselTouchHapticSession"):
+            raise RuntimeError("The VesselTouch plugin is not loaded (LoadPlugin first).")
+        # Python names proxies by their XML label ("Haptic Session").
+        create = simple._create_func("HapticSession", servermanager.filters)
+        active = simple.GetActiveSource()
+        simple.SetActiveSource(None)  # never adopt an unrelated active source as the input
+        try:
+            params = {"registrationName": registrationName or "HapticSession"}
+            if port is not None:
+                params["Input"] = port
+            return create(**params)
+        finally:
+            simple.SetActiveSource(active)
+
+    # --- helpers ---------------------------------------------------------------------------
+    def _set(self, **properties):
+        for name, value in properties.items():
+            self.proxy.SetPropertyWithName(name, value)
+
+    def _info(self, name):
+        self.proxy.UpdatePropertyInformation()
+        return self.proxy.GetProperty(name).GetData()
+
+    def _check(self, what):
+        error = self.GetLastError()
+        if error:
+            raise RuntimeError("%s: %s" % (what, error))
+
+    # --- scene -----------------------------------------------------------------------------
+    def SetCenterline(self, centerline):
+        """Uses this centerline (VesselCenterline, VesselPhantom or an output port)."""
+        self._set(Input=_centerline_port(centerline))
+
+    def ResetCamera(self, direction=(0.0, 0.0, -1.0), view_up=(0.0, 1.0, 0.0), size=None):
+        """An orthographic camera looking at the centerline's centre along ``direction`` (the
+        direction of projection), fitting the whole centerline. ``size``: (width, height) px."""
+        port = self.proxy.Input
+        if port is None:
+            raise RuntimeError("ResetCamera: no centerline")
+        port.UpdatePipeline()
+        bounds = port.GetDataInformation().GetBounds()
+        if bounds[0] > bounds[1]:
+            raise RuntimeError("ResetCamera: the centerline is empty")
+        centre = [0.5 * (bounds[2 * i] + bounds[2 * i + 1]) for i in range(3)]
+        radius = 0.5 * math.sqrt(sum((bounds[2 * i + 1] - bounds[2 * i]) ** 2 for i in range(3)))
+        norm = math.sqrt(sum(d * d for d in direction)) or 1.0
+        distance = 2.0 * radius + 1.0
+        position = [centre[i] - direction[i] / norm * distance for i in range(3)]
+        self.SetCamera(position=position, focal_point=centre, view_up=view_up, parallel=True,
+                       parallel_scale=0.0, size=size)
+
+    def SetCamera(self, position=None, focal_point=None, view_up=None, parallel=None,
+                  parallel_scale=None, view_angle=None, size=None):
+        """Camera in world mm (like vtkCamera); ``parallel_scale`` 0 fits the centerline;
+        ``size`` = (width, height) of the viewport in pixels. Rebuilds the view model."""
+        props = {}
+        if position is not None:
+            props["CameraPosition"] = list(position)
+        if focal_point is not None:
+            props["CameraFocalPoint"] = list(focal_point)
+        if view_up is not None:
+            props["CameraViewUp"] = list(view_up)
+        if parallel is not None:
+            props["CameraParallelProjection"] = 1 if parallel else 0
+        if parallel_scale is not None:
+            props["CameraParallelScale"] = parallel_scale
+        if view_angle is not None:
+            props["CameraViewAngle"] = view_angle
+        if size is not None:
+            props["ViewportSize"] = [int(size[0]), int(size[1])]
+        props["UseExplicitMatrices"] = 0
+        self._set(**props)
+
+    def SetCameraFromView(self, view=None):
+        """Copies the camera and size of a render view (default: the active view)."""
+        view = view or simple.GetActiveView()
+        if view is None:
+            raise RuntimeError("SetCameraFromView: no render view")
+        self.SetCamera(position=view.CameraPosition, focal_point=view.CameraFocalPoint,
+                       view_up=view.CameraViewUp, parallel=bool(view.CameraParallelProjection),
+                       parallel_scale=view.CameraParallelScale, view_angle=view.CameraViewAngle,
+                       size=view.ViewSize)
+
+    def SetCameraMatrices(self, view_matrix, projection_matrix, size=None):
+        """World->eye and eye->clip matrices, row-major (16 values or vtkMatrix4x4)."""
+        def flat(m):
+            if hasattr(m, "GetElement"):
+                return [m.GetElement(r, c) for r in range(4) for c in range(4)]
+            return [float(v) for v in m]
+        props = {"ViewMatrix": flat(view_matrix), "ProjectionMatrix": flat(projection_matrix),
+                 "UseExplicitMatrices": 1}
+        if size is not None:
+            props["ViewportSize"] = [int(size[0]), int(size[1])]
+        self._set(**props)
+
+    # --- device ----------------------------------------------------------------------------
+    def SetDevice(self, kind="simulated", path=None, mass_kg=None, damping_N_s_per_m=None,
+                  max_force_N=None):
+        """'simulated' (mass_kg, damping_N_s_per_m, max_force_N), 'pointer', 'replay' (path of a
+        CSV) or 'hid' (hidapi path). The device opens at Start()/RunOffline(), inside the safety
+        layer."""
+        try:
+            props = {"DeviceType": DEVICES[_key(kind)]}
+        except KeyError:
+            raise ValueError("unknown device %r (one of %s)" % (kind, ", ".join(DEVICES)))
+        if path is not None:
+            props["ReplayFileName" if props["DeviceType"] == 2 else "HidPath"] = str(path)
+        if mass_kg is not None:
+            props["SimulatedMass"] = mass_kg
+        if damping_N_s_per_m is not None:
+            props["SimulatedDamping"] = damping_N_s_per_m
+        if max_force_N is not None:
+            props["SimulatedMaxForce"] = max_force_N
+        self._set(**props)
+
+    def SetHandSweep(self, path=0, speed_mm_per_s=50.0, pressure=1.0):
+        """Simulated hand: approach the first point of ``path`` from 20 mm to the right in
+        0.3 s, then follow its screen projection at ``speed_mm_per_s`` (device mm)."""
+        self._set(HandScript=1, SweepPath=int(path), SweepSpeed=speed_mm_per_s,
+                  HandPressure=pressure)
+
+    def SetHandTrajectory(self, times, xs, ys, cursor_start=None, pressure=1.0):
+        """Simulated hand positions (device mm) at ``times`` (s, increasing from 0), linearly
+        interpolated. ``cursor_start``: cursor (px) at the first sample (default: the centre)."""
+        times, xs, ys = list(times), list(xs), list(ys)
+        if not (len(times) == len(xs) == len(ys)) or not times:
+            raise ValueError("times, xs and ys must be non-empty and of one length")
+        samples = []
+        previous = -math.inf
+        for t, x, y in zip(times, xs, ys):
+            t, x, y = float(t), float(x), float(y)
+            if not (math.isfinite(t) and math.isfinite(x) and math.isfinite(y)) or t <= previous:
+                raise ValueError("hand samples need finite values and increasing times")
+            previous = t
+            samples.extend((t, x, y))
+        cursor = [-1.0, -1.0] if cursor_start is None else [float(v) for v in cursor_start]
+        self._set(HandScript=2, HandSamples=samples, InitialCursor=cursor, HandPressure=pressure)
+
+    def SetPointer(self, x_mm, y_mm, pressed=None):
+        """Pointer device: the mouse position in device mm (and the pressure modifier)."""
+        self._set(PointerPosition=[x_mm, y_mm])
+        if pressed is not None:
+            self._set(PointerPressed=1 if pressed else 0)
+
+    # --- force -----------------------------------------------------------------------------
+    def SetForceLaw(self, law, k=None, lambda_mm=None, z_max_mm=None, forget_time_s=None,
+                    probe_px=None, k_c=None, b_c=None, tau_t=None, snap_N=None,
+                    tangent_drag=None, snap_drag=None):
+        """'LDGF', 'ChangeOfHeight', 'LateralGradient', 'ConstraintProxy' or 'None', with the
+        law's parameters: ``k`` (N, the force-zone gain k(P) in the saturation zone),
+        ``lambda_mm`` (LDGF / change of height), ``z_max_mm``, ``forget_time_s`` (change of
+        height), ``probe_px`` (lateral gradient), ``k_c`` (N/m), ``b_c`` (N s/m), ``tau_t``,
+        ``snap_N`` (N), ``tangent_drag``, ``snap_drag`` (constraint proxy). Switching is
+        crossfaded (no force jump)."""
+        try:
+            value = FORCE_LAWS[_key(law)]
+        except KeyError:
+            raise ValueError("unknown force law %r (one of %s)" % (law, ", ".join(FORCE_LAWS)))
+        props = {"ForceLaw": value}
+        if k is not None:
+            props["ZoneGain"] = k
+        if lambda_mm is not None:
+            props["ChangeOfHeightLambda" if value == 1 else "LdgfLambda"] = lambda_mm
+        optional = (("ChangeOfHeightZMax", z_max_mm), ("ChangeOfHeightForgetTime", forget_time_s),
+                    ("LateralProbe", probe_px), ("ProxyStiffness", k_c), ("ProxyDamping", b_c),
+                    ("ProxyTangentThreshold", tau_t), ("ProxySnapThreshold", snap_N))
+        for name, v in optional:
+            if v is not None:
+                props[name] = v
+        if tangent_drag is not None:
+            props["ProxyTangentDrag"] = 1 if tangent_drag else 0
+        if snap_drag is not None:
+            props["ProxySnapDrag"] = 1 if snap_drag else 0
+        self._set(**props)
+
+    def SetZoom(self, r):
+        """Haptic zoom r = cursor movement / hand movement, clamped to [0.1, 10]."""
+        self._set(Zoom=float(r))
+
+    def SetForceZones(self, gain_N=None, zero_below=None, saturate_above=None):
+        """k(P): zero below ``zero_below``, proportional, then ``gain_N`` above
+        ``saturate_above`` (normalized pressure)."""
+        props = {}
+        if gain_N is not None:
+            props["ZoneGain"] = gain_N
+        if zero_below is not None:
+            props["ZoneZeroBelow"] = zero_below
+        if saturate_above is not None:
+            props["ZoneSaturateAbove"] = saturate_above
+        self._set(**props)
+
+    def SetMaxForce(self, force_N):
+        """Safety layer: the largest force sent, N (also limited by the device)."""
+        self._set(MaxForce=force_N)
+
+    # --- running ---------------------------------------------------------------------------
+    def Start(self, rate_Hz=None):
+        """Starts the real-time loop on its own thread (opens the device)."""
+        if rate_Hz is not None:
+            self._set(LoopRate=rate_Hz)
+        self.proxy.InvokeCommand("Start")
+        self._check("Start")
+        if not self.IsRunning():
+            raise RuntimeError("Start: the loop did not start")
+
+    def Stop(self):
+        """Stops the loop (zero force first) and closes the device."""
+        self.proxy.InvokeCommand("Stop")
+
+    def IsRunning(self):
+        return bool(self.GetStatus()["running"])
+
+    def RunOffline(self, seconds, rate_Hz=1000.0):
+        """Deterministic scripted run with the simulated device (simulated time): a fresh handle
+        and hand script, the agent back to exploring, the log cleared. Returns GetLog()."""
+        self._set(OfflineDuration=float(seconds), OfflineRate=float(rate_Hz))
+        self.proxy.InvokeCommand("RunOffline")
+        self._check("RunOffline")
+        return self.GetLog()
+
+    def PlayTrajectory(self, times, xs, ys, rate_Hz=1000.0, cursor_start=None):
+        """SetHandTrajectory() then RunOffline() until the last sample. Returns GetLog()."""
+        self.SetHandTrajectory(times, xs, ys, cursor_start=cursor_start)
+        return self.RunOffline(float(list(times)[-1]), rate_Hz)
+
+    def ClearFault(self):
+        self.proxy.InvokeCommand("ClearFault")
+
+    # --- results ---------------------------------------------------------------------------
+    def GetLog(self):
+        """The recorded log as NumPy arrays: time (s), hand (N x 2, device mm), cursor (N x 2,
+        px), state (0 exploring, 1 tracing), path, point, position (N x 3, world mm),
+        target_force and force (N x 2, N; force as sent to the device)."""
+        from paraview.vtk.util.numpy_support import vtk_to_numpy
+        self.proxy.UpdatePipeline()
+        table = servermanager.Fetch(self.proxy)
+        log = {}
+        for column, key in _LOG_COLUMNS.items():
+            array = table.GetColumnByName(column) if table is not None else None
+            log[key] = vtk_to_numpy(array).copy() if array is not None else None
+        return log
+
+    def GetStatistics(self):
+        """Real-time loop statistics (rates in Hz, period error and tick cost in us)."""
+        return dict(zip(_STATISTICS, self._info("StatisticsInfo")))
+
+    def GetAgentState(self):
+        """The agent as last published by the haptic thread (or the last offline tick)."""
+        v = list(self._info("AgentStateInfo"))
+        return {"time": v[0], "tick": int(v[1]), "state": int(v[2]), "force_law": int(v[3]),
+                "path": int(v[4]), "point": int(v[5]), "cursor": v[6:8], "position": v[8:11],
+                "tangent": v[11:14], "direction": int(v[14]), "torsion_angle": v[15],
+                "zone_gain": v[16], "force": v[17:19], "target_force": v[19:21],
+                "hand": v[21:23]}
+
+    def GetStatus(self):
+        """running, fault code and text, log length, dropped log entries, skeleton size."""
+        v = list(self._info("SessionStatusInfo"))
+        return {"running": bool(v[0]), "fault": int(v[1]), "log_entries": int(v[2]),
+                "dropped_log_entries": int(v[3]), "paths": int(v[4]), "points": int(v[5]),
+                "fault_text": self._info("FaultInfo"),
+                "scheduler": self._info("SchedulerNoticeInfo")}
+
+    def GetLastError(self):
+        """The last error of the session ("" when none)."""
+        return self._info("LastErrorInfo") or ""
+
+
+_LOGIC = None
+
+
+def logic():
+    """The module-level session shared by the GUI panel and the Python console."""
+    global _LOGIC
+    if _LOGIC is None:
+        _LOGIC = HapticSession(registrationName="VesselTouchSession")
+    return _LOGIC
