@@ -6,7 +6,12 @@ measures wall time and peak extra resident memory of each in its own process, an
 both against the analytic centerline (phantoms) or VMTK's reference centerline (aorta).
 
     /usr/bin/python3 Utilities/skeleton_benchmark.py --build /work/build-skeleton \
-        [--sizes 64 128 256 384] [--markdown table.md]
+        [--sizes 64 128 256 384] [--markdown table.md] [--json results.json]
+
+--json writes one flat record per input: case, dims, vessel_voxels, seconds, peak_mb,
+mean_dist_vox, p95_dist_vox, coverage and the skimage_ equivalents (skimage_seconds,
+skimage_peak_mb, skimage_mean_dist_vox, skimage_coverage), plus budget_mb and speedup
+(aorta distances in mm) and downsample. --downsample F sets the filter's DownsampleFactor.
 
 Memory: peak RSS during the skeletonization minus the RSS just before it (the input volume is
 not counted), read from /proc (VmHWM after resetting it through /proc/self/clear_refs).
@@ -83,17 +88,19 @@ def accuracy(points_mm, reference_mm, cover_mm):
 
 
 def run_case(build, name, args, workdir, reference=None, to_reference=None, cover_mm=1.5,
-             voxel_mm=1.0, skip_skimage=False):
+             voxel_mm=1.0, skip_skimage=False, downsample=1):
     exe = os.path.join(build, "Testing", "Logic", "Skeleton", "vtouchSkeletonBenchmark")
     os.makedirs(workdir, exist_ok=True)
-    vc = json.loads(subprocess.run([exe] + args + [workdir], check=True, capture_output=True,
-                                   text=True).stdout.strip().splitlines()[-1])
+    extra = [str(downsample)] if downsample != 1 else []
+    vc = json.loads(subprocess.run([exe] + args + [workdir] + extra, check=True,
+                                   capture_output=True, text=True).stdout.strip().splitlines()[-1])
     nx, ny, nz = vc["nx"], vc["ny"], vc["nz"]
     # x, y, z (mm), then radius (mm) and path id
     vc_pts = np.loadtxt(os.path.join(workdir, "voxelcoding.csv"), delimiter=",", ndmin=2)[:, :3]
     if reference is None:
         reference = np.loadtxt(os.path.join(workdir, "analytic.csv"), delimiter=",")[:, :3]
     row = {"case": name, "dims": f"{nx}x{ny}x{nz}", "vessel_voxels": vc["vessel_voxels"],
+           "downsample": downsample,
            "vc_s": vc["seconds"], "vc_mb": vc["extra_rss_bytes"] / 2**20,
            "budget_mb": (nx * ny * nz * 2 / 8 + 24 * vc["vessel_voxels"]) / 2**20}
     mapped = to_reference(vc_pts, world=True) if to_reference else vc_pts
@@ -140,6 +147,22 @@ def table(rows):
     return "\n".join(lines)
 
 
+def flat_record(r):
+    """The --json record of one table row (stable key names for other tools)."""
+    speed = r["sk_s"] / r["vc_s"] if r["vc_s"] > 0 else float("nan")
+
+    def num(x):
+        return None if x != x else x  # NaN -> null (strict JSON)
+
+    return {"case": r["case"], "dims": r["dims"], "vessel_voxels": int(r["vessel_voxels"]),
+            "seconds": num(r["vc_s"]), "peak_mb": num(r["vc_mb"]),
+            "mean_dist_vox": num(r["vc_mean_vox"]), "p95_dist_vox": num(r["vc_p95_vox"]),
+            "coverage": num(r["vc_cover"]), "skimage_seconds": num(r["sk_s"]),
+            "skimage_peak_mb": num(r["sk_mb"]), "skimage_mean_dist_vox": num(r["sk_mean_vox"]),
+            "skimage_coverage": num(r["sk_cover"]), "budget_mb": num(r["budget_mb"]),
+            "speedup": num(speed), "downsample": r.get("downsample", 1)}
+
+
 def main():
     if len(sys.argv) > 1 and sys.argv[1] == "--skimage-child":
         skimage_child(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5]),
@@ -151,23 +174,30 @@ def main():
     parser.add_argument("--sizes", type=int, nargs="+", default=[64, 128, 256, 384])
     parser.add_argument("--no-angiogram", action="store_true", help="skip the 360x330x420 case")
     parser.add_argument("--markdown", help="also write the table to this file")
+    parser.add_argument("--json", help="also write per-input flat results (a JSON list) here")
+    parser.add_argument("--downsample", type=int, default=1,
+                        help="the filter's DownsampleFactor for the voxel coding (default 1; "
+                        "scikit-image always runs at full resolution; vessel voxels are then the "
+                        "coarse count)")
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory(prefix="vtouch-bench-") as tmp:
         for shape in ("Helix", "Tree"):
             for n in args.sizes:
                 rows.append(run_case(args.build, f"{shape} {n}", ["phantom", shape, str(n), str(n),
-                                     str(n)], os.path.join(tmp, f"{shape}{n}")))
+                                     str(n)], os.path.join(tmp, f"{shape}{n}"),
+                                     downsample=args.downsample))
                 print(table(rows[-1:]).splitlines()[-1], flush=True)
         ref = read_vtp_points(os.path.join(DATA, "aorta-centerline.vtp"))
         rows.append(run_case(args.build, "aorta level set",
                              ["image", os.path.join(DATA, "aorta-final-levelset.mha"), "-1e30",
                               "-1e-9"], os.path.join(tmp, "aorta"), reference=ref,
-                             to_reference=aorta_frame, cover_mm=1.0, voxel_mm=1.0))
+                             to_reference=aorta_frame, cover_mm=1.0, voxel_mm=1.0,
+                             downsample=args.downsample))
         print(table(rows[-1:]).splitlines()[-1], flush=True)
         if not args.no_angiogram:
             rows.append(run_case(args.build, "Tree (paper size)", ["phantom", "Tree", "360", "330",
-                                 "420"], os.path.join(tmp, "angio")))
+                                 "420"], os.path.join(tmp, "angio"), downsample=args.downsample))
             print(table(rows[-1:]).splitlines()[-1], flush=True)
     text = table(rows)
     print()
@@ -178,6 +208,10 @@ def main():
     if args.markdown:
         with open(args.markdown, "w") as f:
             f.write(text + "\n")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump([flat_record(r) for r in rows], f, indent=1)
+            f.write("\n")
 
 
 if __name__ == "__main__":

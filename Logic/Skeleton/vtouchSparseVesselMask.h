@@ -98,6 +98,30 @@ public:
     }
   }
 
+  /// Calls f(lin) for every vessel voxel in [begin, end), in scan order.
+  template<typename F>
+  void forEachIn(std::uint64_t begin, std::uint64_t end, F&& f) const
+  {
+    for (std::uint64_t w = begin >> 6; w < ((end + 63) >> 6); ++w)
+    {
+      std::uint64_t word = this->Bits[w];
+      if (w == (begin >> 6) && (begin & 63))
+      {
+        word &= ~((std::uint64_t{ 1 } << (begin & 63)) - 1);
+      }
+      if (w == ((end - 1) >> 6) && (end & 63))
+      {
+        word &= (std::uint64_t{ 1 } << (end & 63)) - 1;
+      }
+      while (word)
+      {
+        const int b = __builtin_ctzll(word);
+        f(w * 64 + static_cast<std::uint64_t>(b));
+        word &= word - 1;
+      }
+    }
+  }
+
   const std::array<std::int64_t, 3>& dims() const { return this->Dims; }
   std::uint64_t voxelCount() const { return this->VoxelCount; }
   std::uint64_t vesselCount() const { return this->Count; }

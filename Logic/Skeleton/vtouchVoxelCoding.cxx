@@ -65,13 +65,14 @@ RawSkeleton VoxelCoder::Impl::run()
   bs.assign(n, kInf);
   aux.assign(n, 0);
   flags.assign(n, 0);
-  computeBoundaryCode();
   ss.assign(n, kInf);
   order.reserve(n);
+  // The BS code runs beside the first propagation(s); buildClusters() waits for it.
+  startBoundaryCode();
 
   const auto handle = [&](const std::vector<std::uint32_t>& sources, bool chooseRoot)
   {
-    propagate(sources, true);
+    propagate(sources);
     buildClusters();
     if (chooseRoot)
     {
@@ -114,10 +115,13 @@ RawSkeleton VoxelCoder::Impl::run()
         }
       });
   }
+  awaitBoundaryCode(); // no component was large enough: nothing waited for it yet
   std::size_t clusterBytes = clusters.capacity() * sizeof(Cluster);
+  // While the BS code runs, its scratch coexists with the first propagation's queue.
   out.peakBytes = n * (2 * sizeof(float) + sizeof(std::uint32_t) + 1) +
-                  order.capacity() * sizeof(std::uint32_t) + peakQueue * sizeof(std::uint32_t) +
-                  clusterBytes;
+                  order.capacity() * sizeof(std::uint32_t) +
+                  std::max(peakQueue * sizeof(std::uint32_t) + clusterBytes,
+                    boundaryScratchBytes + peakQueue * sizeof(std::uint32_t));
   if (progress && !progress(1.0))
   {
     throw VoxelCodingAborted();

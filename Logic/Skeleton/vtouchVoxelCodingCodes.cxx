@@ -1,103 +1,10 @@
-// Voxel coding stages 2-4: BS code, SS code, clusters and the cluster graph, root choice.
+// Voxel coding stages 3-4: SS code, clusters and the cluster graph, root choice.
 #include "vtouchVoxelCodingImpl.h"
 
 namespace vtouch
 {
 
-void VoxelCoder::Impl::computeBoundaryCode()
-{
-  const StageTimer timer{ *this, "bs" };
-  BucketQueue queue(minSpacing, maxSpacing * 2.0);
-  mask.forEach(
-    [&](std::uint64_t lin)
-    {
-      std::int64_t c[3];
-      coords(lin, c);
-      if (c[0] > 0 && c[0] < nx - 1 && c[1] > 0 && c[1] < ny - 1 && c[2] > 0 && c[2] < nz - 1)
-      {
-        bool full = true;
-        for (int q = 0; q < 9 && full; ++q)
-        {
-          full = mask.window3(static_cast<std::uint64_t>(
-                   static_cast<std::int64_t>(lin) + rowOffset[q] - 1)) == 7U;
-        }
-        if (full)
-        {
-          tick();
-          return; // not a boundary voxel
-        }
-      }
-      double best = kInf;
-      std::uint32_t bestSite = 0;
-      for (int n = 0; n < 26; ++n)
-      {
-        const std::int64_t i = c[0] + off[n][0], j = c[1] + off[n][1], k = c[2] + off[n][2];
-        // Outside the volume is not background: a vessel cut by the field of view goes on.
-        const bool outside = i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz;
-        if (!outside &&
-            !mask.test(static_cast<std::uint64_t>(static_cast<std::int64_t>(lin) + offLin[n])) &&
-            offLen[n] < best)
-        {
-          best = offLen[n];
-          bestSite = padded(i, j, k);
-        }
-      }
-      if (best < kInf)
-      {
-        const std::uint32_t r = mask.rank(lin);
-        bs[r] = static_cast<float>(best);
-        aux[r] = bestSite;
-        queue.push(static_cast<std::uint32_t>(lin), best);
-      }
-      tick();
-    });
-  std::uint32_t lin = 0;
-  while (queue.pop(lin))
-  {
-    const std::uint32_t r = mask.rank(lin);
-    // A voxel improved while queued has several entries: expand it once per improvement.
-    if (flags[r] & kDone)
-    {
-      continue;
-    }
-    flags[r] |= kDone;
-    const std::uint32_t site = aux[r];
-    std::int64_t s[3];
-    unpad(site, s);
-    std::int64_t cv[3];
-    coords(lin, cv);
-    const double base[3] = { static_cast<double>(cv[0] - s[0]) * sp[0],
-      static_cast<double>(cv[1] - s[1]) * sp[1],
-      static_cast<double>(cv[2] - s[2]) * sp[2] };
-    forNeighbours(lin,
-      [&](std::uint64_t u, int n, std::uint32_t ru)
-      {
-        const double dx = base[0] + offMm[n][0], dy = base[1] + offMm[n][1],
-                     dz = base[2] + offMm[n][2];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        const double current = bs[ru];
-        if (d2 < current * current) // no square root unless it improves
-        {
-          const auto d = static_cast<float>(std::sqrt(d2));
-          if (d < bs[ru])
-          {
-            bs[ru] = d;
-            aux[ru] = site;
-            flags[ru] &= static_cast<std::uint8_t>(~kDone);
-            queue.push(static_cast<std::uint32_t>(u), d);
-          }
-        }
-      });
-    tick();
-  }
-  for (std::uint8_t& f : flags)
-  {
-    f &= static_cast<std::uint8_t>(~kDone);
-  }
-  peakQueue = std::max(peakQueue, queue.peak());
-}
-
-void VoxelCoder::Impl::propagate(const std::vector<std::uint32_t>& sources, bool unite)
+void VoxelCoder::Impl::propagate(const std::vector<std::uint32_t>& sources)
 {
   const StageTimer timer{ *this, "ss" };
   BucketQueue queue(minSpacing, maxSpacing * std::sqrt(3.0));
@@ -113,35 +20,17 @@ void VoxelCoder::Impl::propagate(const std::vector<std::uint32_t>& sources, bool
     const std::uint32_t r = mask.rank(lin);
     if (flags[r] & kDone)
     {
-      continue;
+      continue; // a stale entry of a voxel improved while queued
     }
     flags[r] |= kDone;
     order.push_back(lin);
     const float d = ss[r];
-    const std::uint32_t b = band(r);
-    std::uint32_t rootR = r;
-    if (unite)
-    {
-      aux[r] = r;
-    }
+    // No test of the neighbours' kDone flags (a cache miss each): a finalized neighbour u left a
+    // bucket at or below the current one, so ss[u] < d + bucket width <= d + any edge, and the
+    // comparison below already rejects it.
     forNeighbours(lin,
       [&](std::uint64_t u, int n, std::uint32_t ru)
       {
-        if (flags[ru] & kDone)
-        {
-          // Each pair of neighbours is joined once: when the second of the two is finalized.
-          if (unite && band(ru) == b)
-          {
-            // Only this voxel's set changes during its expansion: its root is tracked.
-            const std::uint32_t y = find(ru);
-            if (y != rootR)
-            {
-              aux[std::max(rootR, y)] = std::min(rootR, y);
-              rootR = std::min(rootR, y);
-            }
-          }
-          return;
-        }
         const float nd = d + offLenF[n];
         if (nd < ss[ru])
         {
@@ -213,13 +102,64 @@ std::vector<std::uint32_t> VoxelCoder::Impl::extremityRegion()
 
 void VoxelCoder::Impl::buildClusters()
 {
+  awaitBoundaryCode(); // the clusters read bs
   const StageTimer timer{ *this, "clusters" };
-  // The union of equal-band neighbours was done by propagate(..., true).
-  for (std::uint32_t lin : order)
+  // The passes visit each voxel's neighbourhood: in scan (rank) order the arrays are
+  // read nearly sequentially, in SS order every access is a cache miss (2-3x slower). Scan order
+  // needs the whole mask to be this component (the usual case); otherwise the SS order is kept.
+  const bool whole = order.size() == mask.vesselCount();
+  const auto visit = [&](auto&& f)
   {
-    const std::uint32_t r = mask.rank(lin);
-    aux[r] = find(r);
+    if (whole)
+    {
+      std::uint32_t r = 0;
+      mask.forEach([&](std::uint64_t lin) { f(static_cast<std::uint32_t>(lin), r++); });
+    }
+    else
+    {
+      for (std::uint32_t lin : order)
+      {
+        f(lin, mask.rank(lin));
+      }
+    }
+  };
+  // Union-find (in aux, the smaller rank is the root) of the 26-neighbours in the same SS band;
+  // each pair is joined once, from the later of the two in scan order.
+  if (!whole)
+  {
+    for (std::uint32_t lin : order)
+    {
+      const std::uint32_t r = mask.rank(lin);
+      aux[r] = r;
+    }
   }
+  visit(
+    [&](std::uint32_t lin, std::uint32_t r)
+    {
+      if (whole)
+      {
+        aux[r] = r;
+      }
+      const std::uint32_t b = band(r);
+      std::uint32_t rootR = find(r);
+      forNeighbours(
+        lin,
+        [&](std::uint64_t, int, std::uint32_t ru)
+        {
+          if (band(ru) == b)
+          {
+            // Only this voxel's set changes here: its root is tracked.
+            const std::uint32_t y = find(ru);
+            if (y != rootR)
+            {
+              aux[std::max(rootR, y)] = std::min(rootR, y);
+              rootR = std::min(rootR, y);
+            }
+          }
+        },
+        kHalf);
+    });
+  // The roots become the clusters, numbered in SS order (the order of the tips' tie-breaks).
   clusters.clear();
   for (std::uint32_t lin : order)
   {
@@ -231,12 +171,19 @@ void VoxelCoder::Impl::buildClusters()
       clusters.back().band = band(r);
     }
   }
-  for (std::uint32_t lin : order)
+  // Label of each voxel (its set's cluster) and the cluster sums.
+  const auto resolve = [&](std::uint32_t lin, std::uint32_t r)
   {
-    const std::uint32_t r = mask.rank(lin);
     if (!(aux[r] & kLabelled))
     {
-      aux[r] = aux[aux[r]];
+      // Union parents precede their children in rank order, so in scan order the parent is
+      // already labelled; in SS order, follow the chain.
+      std::uint32_t x = aux[r];
+      while (!(aux[x] & kLabelled))
+      {
+        x = aux[x];
+      }
+      aux[r] = aux[x];
     }
     Cluster& c = clusters[aux[r] & ~kLabelled];
     std::int64_t x[3];
@@ -248,15 +195,16 @@ void VoxelCoder::Impl::buildClusters()
     {
       c.sum[a] += static_cast<double>(x[a]) * sp[a];
     }
-    if (bs[r] > c.maxBs || c.count == 1)
+    // Ties of BS go to the lower SS code, whatever the visiting order.
+    if (c.count == 1 || bs[r] > c.maxBs || (bs[r] == c.maxBs && ss[r] < ss[mask.rank(c.bestVoxel)]))
     {
       c.maxBs = bs[r];
       c.bestVoxel = lin;
     }
-  }
-  for (std::uint32_t lin : order)
+  };
+  // Cluster graph: clusters of different bands that touch.
+  const auto link = [&](std::uint32_t lin, std::uint32_t r)
   {
-    const std::uint32_t r = mask.rank(lin);
     const std::uint32_t c = aux[r] & ~kLabelled;
     // Most neighbours of another band belong to one or two clusters: skip repeats cheaply.
     std::uint32_t linked[2] = { c, c };
@@ -278,6 +226,27 @@ void VoxelCoder::Impl::buildClusters()
       },
       kHalf);
     tick();
+  };
+  if (whole)
+  {
+    // One pass: in scan order the 13 neighbours before a voxel are already resolved.
+    visit(
+      [&](std::uint32_t lin, std::uint32_t r)
+      {
+        resolve(lin, r);
+        link(lin, r);
+      });
+  }
+  else
+  {
+    visit(resolve);
+    visit(link);
+  }
+  // Neighbour lists in cluster (SS) order, independent of the visiting order.
+  for (Cluster& c : clusters)
+  {
+    std::sort(c.lower.begin(), c.lower.end());
+    std::sort(c.higher.begin(), c.higher.end());
   }
 }
 
@@ -327,7 +296,7 @@ void VoxelCoder::Impl::rootAtThickestEnd()
   // One root voxel at the centre of the end cap: every trace then converges to one point.
   const std::vector<std::uint32_t> root{ tipStart(clusters[best]) };
   resetPropagation();
-  propagate(root, true);
+  propagate(root);
   buildClusters();
 }
 

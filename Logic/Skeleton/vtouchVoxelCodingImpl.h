@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <thread>
 #include <unordered_map>
 
 namespace vtouch
@@ -214,29 +216,40 @@ struct VoxelCoder::Impl
     }
   }
 
-  // ---- boundary-seeded code: Euclidean distance to the nearest background voxel centre, by
-  // propagating the nearest background site (vector propagation) with a bucket queue.
-  std::uint32_t padded(std::int64_t i, std::int64_t j, std::int64_t k) const
-  {
-    return static_cast<std::uint32_t>((i + 1) + (nx + 2) * ((j + 1) + (ny + 2) * (k + 1)));
-  }
-  void unpad(std::uint32_t p, std::int64_t c[3]) const
-  {
-    // Padded indices fit 32 bits (checked in VoxelCoder's constructor): 32-bit division is cheaper.
-    const auto px = static_cast<std::uint32_t>(nx + 2), py = static_cast<std::uint32_t>(ny + 2);
-    const std::uint32_t r = p / px;
-    c[0] = static_cast<std::int64_t>(p - r * px) - 1;
-    const std::uint32_t k = r / py;
-    c[1] = static_cast<std::int64_t>(r - k * py) - 1;
-    c[2] = static_cast<std::int64_t>(k) - 1;
-  }
-
+  // ---- boundary-seeded code: exact Euclidean distance (mm) to the nearest background voxel
+  // centre, by a separable transform over the vessel runs (vtouchVoxelCodingBoundary.cxx).
+  std::vector<double> siteX, siteF, envelopeFrom; // scratch of one run's lower envelope
+  std::vector<std::size_t> envelopeSite;
+  /// Squared distance along x to the row's background (runs of consecutive ranks).
+  void boundaryRowPass();
+  /// Squared distance after the pass along `axis` (1 = y, 2 = z), from the previous passes.
+  void boundaryLinePass(int axis);
+  std::vector<std::uint32_t> planeRank, planePosition; // one plane's voxels in column order
+  /// One vessel run of a column: `count` ranks at positions first.. along an axis of `len` voxels.
+  void envelopeOfRun(const std::uint32_t* ranks,
+    std::uint32_t first,
+    std::uint32_t count,
+    std::int64_t len,
+    double spacing);
   void computeBoundaryCode();
 
+  // The BS code (bs and its own scratch) and the first propagations (ss, flags, order) touch
+  // different arrays: the BS code runs on a second thread until the clusters need it. That
+  // thread never reports progress (the callback is called from the caller's thread only) and
+  // is joined before anything reads bs or aux, and by the destructor when a stage throws.
+  std::thread boundaryThread;
+  std::exception_ptr boundaryError;
+  double boundarySeconds = 0.0;
+  bool boundaryQuiet = false;           // no tick() from the BS passes (second thread)
+  std::size_t boundaryScratchBytes = 0; // the BS code's largest scratch array
+  void startBoundaryCode();
+  void boundaryCodeOnThread();
+  /// Joins the BS thread (if any), rethrows its error and accounts its time and progress.
+  void awaitBoundaryCode();
+  ~Impl();
+
   // ---- single-seed code: exact geodesic (26-neighbour, metric edge lengths) Dijkstra.
-  /// With `unite`, also joins each voxel to its finalized neighbours of the same SS band
-  /// (union-find in `aux`): the first half of the clustering, without a pass of its own.
-  void propagate(const std::vector<std::uint32_t>& sources, bool unite = false);
+  void propagate(const std::vector<std::uint32_t>& sources);
 
   void resetPropagation();
 

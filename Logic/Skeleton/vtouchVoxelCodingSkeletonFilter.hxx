@@ -97,6 +97,11 @@ void VoxelCodingSkeletonFilter<TInputImage>::VerifyPreconditions() ITKv5_CONST
     itkExceptionMacro("Vesselness needs 0 < SigmaMinimum <= SigmaMaximum (mm), at least one "
                       "scale and a threshold in [0, 1]");
   }
+  if (this->m_DownsampleFactor < 1 || this->m_DownsampleFactor > 64)
+  {
+    itkExceptionMacro(
+      "DownsampleFactor must be an integer in [1, 64], got " << this->m_DownsampleFactor);
+  }
   const InputImageType* input = this->GetInput();
   const auto size = input->GetLargestPossibleRegion().GetSize();
   for (unsigned int a = 0; a < ImageDimension; ++a)
@@ -132,12 +137,18 @@ SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
   {
     itkExceptionMacro("the whole volume must be buffered");
   }
-  const std::array<std::int64_t, 3> dims{ static_cast<std::int64_t>(size[0]),
+  // One streaming pass over the volume; with downsampling, a coarse voxel is vessel when any
+  // voxel of its block is (block maximum).
+  const std::int64_t f = this->m_DownsampleFactor;
+  const std::array<std::int64_t, 3> fine{ static_cast<std::int64_t>(size[0]),
     static_cast<std::int64_t>(size[1]),
     static_cast<std::int64_t>(size[2]) };
+  const std::array<std::int64_t, 3> dims{
+    (fine[0] + f - 1) / f, (fine[1] + f - 1) / f, (fine[2] + f - 1) / f
+  };
   SparseVesselMask mask(dims);
   const PixelType* voxels = input->GetBufferPointer();
-  const std::uint64_t n = mask.voxelCount();
+  const std::uint64_t n = static_cast<std::uint64_t>(fine[0] * fine[1] * fine[2]);
 
   using RealImageType = itk::Image<float, 3>;
   typename RealImageType::Pointer vesselness;
@@ -169,20 +180,30 @@ SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
     vesselnessCut = static_cast<float>(this->m_VesselnessThreshold) * vmax;
   }
   const float* vness = vesselness ? vesselness->GetBufferPointer() : nullptr;
-  for (std::uint64_t i = 0; i < n; ++i)
+  std::uint64_t i = 0;
+  for (std::int64_t z = 0; z < fine[2]; ++z)
   {
-    const double value = static_cast<double>(voxels[i]);
-    if constexpr (std::is_floating_point<PixelType>::value)
+    for (std::int64_t y = 0; y < fine[1]; ++y)
     {
-      if (!std::isfinite(value))
+      const std::uint64_t coarseRow =
+        static_cast<std::uint64_t>(dims[0] * (y / f + dims[1] * (z / f)));
+      for (std::int64_t x = 0; x < fine[0]; ++x, ++i)
       {
-        itkExceptionMacro("the volume holds a NaN or infinite voxel (linear index " << i << ")");
+        const double value = static_cast<double>(voxels[i]);
+        if constexpr (std::is_floating_point<PixelType>::value)
+        {
+          if (!std::isfinite(value))
+          {
+            itkExceptionMacro(
+              "the volume holds a NaN or infinite voxel (linear index " << i << ")");
+          }
+        }
+        if (value >= this->m_LowerThreshold && value <= this->m_UpperThreshold &&
+            (!vness || vness[i] >= vesselnessCut))
+        {
+          mask.set(f == 1 ? i : coarseRow + static_cast<std::uint64_t>(x / f));
+        }
       }
-    }
-    if (value >= this->m_LowerThreshold && value <= this->m_UpperThreshold &&
-        (!vness || vness[i] >= vesselnessCut))
-    {
-      mask.set(i);
     }
   }
   mask.finalize();
@@ -192,7 +213,7 @@ SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
                                            << this->m_UpperThreshold
                                            << "]: the vessel mask is empty");
   }
-  if (mask.vesselCount() == n)
+  if (mask.vesselCount() == mask.voxelCount())
   {
     itkExceptionMacro("every voxel lies in [" << this->m_LowerThreshold << ", "
                                               << this->m_UpperThreshold
@@ -212,6 +233,10 @@ auto VoxelCodingSkeletonFilter<TInputImage>::SeedIndex(const SparseVesselMask& m
     itkExceptionMacro("SeedPoint " << this->m_SeedPoint << " is outside the volume");
   }
   const auto& d = mask.dims();
+  for (unsigned int a = 0; a < 3; ++a)
+  {
+    index[a] /= static_cast<typename IndexType::IndexValueType>(this->m_DownsampleFactor);
+  }
   // A click may land a voxel off the vessel: accept the nearest vessel voxel of the 3x3x3 block.
   double best = std::numeric_limits<double>::infinity();
   IndexType found = index;
@@ -249,9 +274,13 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
   const auto& origin = input->GetOrigin();
   const auto& dir = input->GetDirection();
   double maxSpacing = 0.0;
+  // A coarse voxel sits at the centre of its block of fine voxels.
+  double blockCentre_mm[3];
+  const double f = static_cast<double>(this->m_DownsampleFactor);
   for (unsigned int a = 0; a < 3; ++a)
   {
-    maxSpacing = std::max(maxSpacing, static_cast<double>(input->GetSpacing()[a]));
+    maxSpacing = std::max(maxSpacing, f * static_cast<double>(input->GetSpacing()[a]));
+    blockCentre_mm[a] = 0.5 * (f - 1.0) * static_cast<double>(input->GetSpacing()[a]);
   }
   QSkeleton s;
   s.paths.resize(raw.paths.size());
@@ -265,7 +294,9 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
     path.points.resize(rp.voxels.size());
     for (std::size_t i = 0; i < rp.voxels.size(); ++i)
     {
-      const auto& c = rp.center_mm[i];
+      const std::array<double, 3> c{ rp.center_mm[i][0] + blockCentre_mm[0],
+        rp.center_mm[i][1] + blockCentre_mm[1],
+        rp.center_mm[i][2] + blockCentre_mm[2] };
       double w[3];
       for (unsigned int r = 0; r < 3; ++r)
       {
@@ -322,7 +353,8 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
 
   VoxelCodingParameters par;
   const auto& spacing = this->GetInput()->GetSpacing();
-  par.spacing_mm = { spacing[0], spacing[1], spacing[2] };
+  const double f = static_cast<double>(this->m_DownsampleFactor);
+  par.spacing_mm = { f * spacing[0], f * spacing[1], f * spacing[2] };
   par.minimumBranchLength = this->m_MinimumBranchLength;
   par.minimumComponentSize = this->m_MinimumComponentSize;
   par.clusterWidth_mm = this->m_ClusterWidth;
@@ -380,6 +412,7 @@ void VoxelCodingSkeletonFilter<TInputImage>::PrintSelf(std::ostream& os, itk::In
   os << indent << "MinimumBranchLength: " << this->m_MinimumBranchLength << "\n";
   os << indent << "SmoothingWindow: " << this->m_SmoothingWindow << "\n";
   os << indent << "ClusterWidth: " << this->m_ClusterWidth << "\n";
+  os << indent << "DownsampleFactor: " << this->m_DownsampleFactor << "\n";
   os << indent << "UseVesselness: " << this->m_UseVesselness << "\n";
   os << indent << "VesselnessSigmaMinimum: " << this->m_VesselnessSigmaMinimum << "\n";
   os << indent << "VesselnessSigmaMaximum: " << this->m_VesselnessSigmaMaximum << "\n";

@@ -40,6 +40,7 @@ struct Settings
   double sigmaMin, sigmaMax;
   int scales;
   double vesselnessThreshold;
+  int downsampleFactor;
 };
 
 /// Wraps the VTK scalars as an ITK image (no copy) with the VTK geometry.
@@ -106,6 +107,8 @@ vtouch::QSkeleton skeletonize(vtkVesselTouchCenterlineFilter* self,
   filter->SetVesselnessSigmaMaximum(s.sigmaMax);
   filter->SetVesselnessNumberOfScales(static_cast<unsigned int>(std::max(0, s.scales)));
   filter->SetVesselnessThreshold(s.vesselnessThreshold);
+  // Values below 1 reach the ITK filter as 0, which it rejects with a clear message.
+  filter->SetDownsampleFactor(static_cast<unsigned int>(std::max(0, s.downsampleFactor)));
   // Progress to VTK; VTK's abort flag to ITK.
   auto progress = itk::CStyleCommand::New();
   struct Context
@@ -262,7 +265,8 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     this->VesselnessSigmaMinimum,
     this->VesselnessSigmaMaximum,
     this->VesselnessNumberOfScales,
-    this->VesselnessThreshold };
+    this->VesselnessThreshold,
+    this->DownsampleFactor };
   try
   {
     vtouch::QSkeleton skeleton;
@@ -323,5 +327,6 @@ void vtkVesselTouchCenterlineFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumComponentSize: " << this->MinimumComponentSize << "\n";
   os << indent << "MinimumBranchLength: " << this->MinimumBranchLength << "\n";
   os << indent << "SmoothingWindow: " << this->SmoothingWindow << "\n";
+  os << indent << "DownsampleFactor: " << this->DownsampleFactor << "\n";
   os << indent << "UseVesselness: " << this->UseVesselness << "\n";
 }

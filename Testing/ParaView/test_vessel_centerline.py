@@ -63,6 +63,18 @@ for i in range(0, poly.GetNumberOfPoints()):
     worst = max(worst, sum((a - b) ** 2 for a, b in zip(p, q)) ** 0.5)
 check.true(worst < 2.5, "every point within 2.5 mm of the analytic centerline (worst %.2f)" % worst)
 
+# DownsampleFactor 2: about 8x fewer voxels, same topology, still in world mm near the analytic
+# centerline (within 1 original voxel on average).
+coarse, _ = centerline("Y bifurcation", DownsampleFactor=2)
+check.equal(coarse.GetNumberOfLines(), 2, "Y downsampled by 2 gives two paths")
+total = 0.0
+for i in range(0, coarse.GetNumberOfPoints()):
+    p = coarse.GetPoint(i)
+    q = analytic.GetPoint(locator.FindClosestPoint(p))
+    total += sum((a - b) ** 2 for a, b in zip(p, q)) ** 0.5
+mean = total / max(1, coarse.GetNumberOfPoints())
+check.true(mean < 1.0, "downsampled centerline within 1 voxel on average (%.2f mm)" % mean)
+
 # A loop network comes out with a loop: junctions = paths - components + loops.
 poly, _ = centerline("Loop network")
 junctions = poly.GetFieldData().GetArray("JunctionChildPath").GetNumberOfTuples()

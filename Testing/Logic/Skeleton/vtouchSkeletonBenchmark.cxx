@@ -1,12 +1,13 @@
 // Speed and memory of the voxel-coding skeleton, for Utilities/skeleton_benchmark.py (which runs
 // scikit-image on the same volumes and prints the side-by-side table). Not a test.
 //
-//   vtouchSkeletonBenchmark phantom <Helix|Tree> <nx> <ny> <nz> <outdir>
+//   vtouchSkeletonBenchmark phantom <Helix|Tree> <nx> <ny> <nz> <outdir> [downsample]
 //       writes <outdir>/mask.raw (uint8, x fastest), <outdir>/analytic.csv (x,y,z mm) and runs the
 //       filter, writing <outdir>/voxelcoding.csv (x,y,z mm, radius mm, path id) and one JSON line
 //       on stdout.
-//   vtouchSkeletonBenchmark image <file.mha> <lower> <upper> <outdir>
+//   vtouchSkeletonBenchmark image <file.mha> <lower> <upper> <outdir> [downsample]
 //       same for an image file (mask.raw, voxelcoding.csv; no analytic centerline).
+//   [downsample]: the filter's DownsampleFactor (default 1); mask.raw stays at full resolution.
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include "vtouchPhantomGenerator.h"
@@ -14,6 +15,7 @@
 #include <itkImageFileReader.h>
 #include <itkMetaImageIOFactory.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -41,6 +43,11 @@ long long statusKb(const char* key)
   return -1;
 }
 
+unsigned int downsampleArg(const char* text)
+{
+  return static_cast<unsigned int>(std::max(0, std::atoi(text))); // 0 is rejected by the filter
+}
+
 void resetPeak()
 {
   std::ofstream("/proc/self/clear_refs") << "5";
@@ -63,13 +70,15 @@ int run(Image* image,
   double lower,
   double upper,
   const std::string& outdir,
-  const std::string& name)
+  const std::string& name,
+  unsigned int downsample)
 {
   writeMask(image, lower, upper, outdir + "/mask.raw");
   auto filter = Filter::New();
   filter->SetInput(image);
   filter->SetLowerThreshold(lower);
   filter->SetUpperThreshold(upper);
+  filter->SetDownsampleFactor(downsample);
   const long long baseKb = statusKb("VmRSS:");
   resetPeak();
   const auto t0 = std::chrono::steady_clock::now();
@@ -114,7 +123,7 @@ int main(int argc, char** argv)
 {
   try
   {
-    if (argc == 7 && std::string(argv[1]) == "phantom")
+    if ((argc == 7 || argc == 8) && std::string(argv[1]) == "phantom")
     {
       vtouch::PhantomSpec spec;
       const std::string shape = argv[2];
@@ -149,16 +158,21 @@ int main(int argc, char** argv)
         }
       }
       const double wall = 0.5 * (spec.backgroundIntensity + spec.peakIntensity);
-      return run(image, wall, 1e30, outdir, shape);
+      return run(image, wall, 1e30, outdir, shape, argc == 8 ? downsampleArg(argv[7]) : 1U);
     }
-    if (argc == 6 && std::string(argv[1]) == "image")
+    if ((argc == 6 || argc == 7) && std::string(argv[1]) == "image")
     {
       itk::MetaImageIOFactory::RegisterOneFactory();
       auto reader = itk::ImageFileReader<Image>::New();
       reader->SetFileName(argv[2]);
       reader->Update();
       Image::Pointer image = reader->GetOutput();
-      return run(image, std::atof(argv[3]), std::atof(argv[4]), argv[5], "image");
+      return run(image,
+        std::atof(argv[3]),
+        std::atof(argv[4]),
+        argv[5],
+        "image",
+        argc == 7 ? downsampleArg(argv[6]) : 1U);
     }
   }
   catch (const std::exception& e)
@@ -166,7 +180,7 @@ int main(int argc, char** argv)
     std::cerr << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: vtouchSkeletonBenchmark phantom <Helix|Tree> nx ny nz outdir\n"
-               "       vtouchSkeletonBenchmark image file.mha lower upper outdir\n";
+  std::cerr << "usage: vtouchSkeletonBenchmark phantom <Helix|Tree> nx ny nz outdir [downsample]\n"
+               "       vtouchSkeletonBenchmark image file.mha lower upper outdir [downsample]\n";
   return 2;
 }

@@ -7,7 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <vector>
 #include <limits>
 
 namespace vtouch
@@ -120,6 +123,54 @@ TEST(VoxelCodingSkeletonFilter, AnisotropicSpacingGivesTheSameCenterlineInMillim
   EXPECT_LE(acc.mean_mm, 0.35 * 2.0);
   EXPECT_LE(acc.p95_mm, 1.0 * 2.0);
   EXPECT_GE(acc.coverage, 0.99);
+}
+
+TEST(VoxelCodingSkeletonFilter, DownsampleFactorTwoStaysWithinOneVoxelOfFullResolution)
+{
+  PhantomSpec spec;
+  spec.shape = PhantomShape::YBifurcation;
+  spec.dimensions = { 97, 97, 97 };
+  spec.origin_mm = { -10.0, 5.0, 2.5 };
+  PhantomGenerator generator(spec);
+  ASSERT_TRUE(generator.ok());
+  auto image = test::phantomImage(generator);
+  const Result full = skeletonize(image, test::wallThreshold(spec));
+  auto filter = Filter::New();
+  filter->SetInput(image);
+  filter->SetLowerThreshold(test::wallThreshold(spec));
+  filter->SetDownsampleFactor(2);
+  filter->Update();
+  const QSkeleton& coarse = filter->GetSkeleton();
+  EXPECT_EQ(coarse.validate(), "");
+  // Block maximum: about 1/8 of the voxels, plus the half block it adds around the wall.
+  EXPECT_LT(filter->GetNumberOfVesselVoxels() * 4, full.raw.vesselVoxels);
+  const test::Topology tf = test::topology(full.skeleton, 15.0);
+  const test::Topology tc = test::topology(coarse, 15.0);
+  EXPECT_EQ(tc.endPoints, tf.endPoints);
+  EXPECT_EQ(tc.bifurcations, tf.bifurcations);
+  // Output in the input's world frame: within one original voxel of the full-resolution result.
+  std::vector<double> d;
+  for (const SkeletonPath& path : coarse.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      d.push_back(test::distanceToSkeleton(full.skeleton, q.position_World_mm));
+    }
+  }
+  ASSERT_FALSE(d.empty());
+  std::sort(d.begin(), d.end());
+  double mean = 0.0;
+  for (double x : d)
+  {
+    mean += x / static_cast<double>(d.size());
+  }
+  const double p95 = d[static_cast<std::size_t>(0.95 * static_cast<double>(d.size() - 1))];
+  std::cout << "downsample 2 vs 1: mean " << mean << " mm, p95 " << p95 << " mm, max " << d.back()
+            << " mm\n";
+  EXPECT_LE(mean, 0.5);
+  EXPECT_LE(p95, 1.0);
+  filter->SetDownsampleFactor(0);
+  EXPECT_THROW(filter->Update(), itk::ExceptionObject);
 }
 
 TEST(VoxelCodingSkeletonFilter, WorldCoordinatesFollowOriginSpacingAndDirection)
