@@ -28,8 +28,9 @@ public:
 enum class LoopFault : std::uint8_t
 {
   None = 0,
-  WatchdogOverrun = 1 ///< a tick started or ended later than LoopOptions::watchdog_s after its
-                      ///< deadline (a stalled host or a stalled tick)
+  WatchdogOverrun = 1 ///< a tick itself ran longer than LoopOptions::watchdog_s (the haptic
+                      ///< thread stopped making progress), or, with faultOnLateWake, a tick
+                      ///< started that late after its deadline
 };
 
 struct LoopOptions
@@ -38,13 +39,21 @@ struct LoopOptions
   double rate_Hz = 1000.0;
   /// Sleep (clock_nanosleep, absolute) until this long before the deadline, then spin. Timer
   /// wake-ups on the target VMs are 65-140 us late, so the default 250 us leaves margin. 0 = sleep
-  /// only (lower CPU use, more jitter).
+  /// only (lower CPU use, more jitter). Capped at half the period so the thread sleeps in every
+  /// period (a SCHED_FIFO thread spinning whole periods is throttled by the kernel for 50 ms every
+  /// second): 50 us at 10 kHz.
   double spinMargin_us = 250.0;
   /// Ask for SCHED_FIFO at this priority (1..99); 0 = do not ask. Default 80.
   int realtimePriority = 80;
-  /// Fault when a tick starts, or finishes, this long after its deadline, s (hypervisor stalls of
-  /// 1-4 ms are expected and only counted). Default 0.02 s.
+  /// Watchdog on the haptic thread's own progress: a tick that runs longer than this, s, zeroes
+  /// the force (target->emergencyStop()) and latches LoopFault::WatchdogOverrun. A wake-up later
+  /// than this after its deadline (the whole VM stalled: the device was frozen too) zeroes the
+  /// force as well and the target re-engages softly, but it is only counted as a stall (see
+  /// LoopStatisticsSummary::stalls) unless faultOnLateWake is set. Default 0.02 s; 0 disables.
   double watchdog_s = 0.02;
+  /// Also latch the fault on a late wake-up (the behaviour before stalls were told apart).
+  /// Default false.
+  bool faultOnLateWake = false;
 };
 
 /// Owns its std::thread; stop() (or the destructor) sets an atomic flag and joins.

@@ -60,6 +60,10 @@ struct HapticParameters
   // --- tracing and smoothing ---
   double tracerDeadBand_px = 0.25;     ///< the agent stays still below this projection, px. 0.25
   double maxForceRate_N_per_s = 100.0; ///< time-domain interpolation bound, N/s. Default 100
+  /// Direction hysteresis at projection cusps, fraction of |cursor - agent| (Tracer). 0.1
+  double tracerDirectionHysteresis = 0.1;
+  /// Screen arc searched ahead for a fold before reversing, px (Tracer). Default 3 px
+  double tracerFoldLookAhead_px = 3.0;
 
   static constexpr double kMinZoom = 0.1;
   static constexpr double kMaxZoom = 10.0;

@@ -59,6 +59,11 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Zones.saturateAbove = p.zoneSaturateAbove;
   this->Interpolator.maxRate_N_per_s = p.maxForceRate_N_per_s;
   this->Trace.deadBand_px = std::max(0.0, p.tracerDeadBand_px);
+  this->Trace.directionHysteresis = std::isfinite(p.tracerDirectionHysteresis)
+                                      ? std::clamp(p.tracerDirectionHysteresis, 0.0, 1.0)
+                                      : 0.1;
+  this->Trace.foldLookAhead_px =
+    std::isfinite(p.tracerFoldLookAhead_px) ? std::max(0.0, p.tracerFoldLookAhead_px) : 3.0;
 }
 
 Vec2 HapticPipeline::renderLaws(const ForceInput& fin,

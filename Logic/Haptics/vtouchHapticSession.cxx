@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vtouch
 {
@@ -25,8 +26,20 @@ const char* toString(SessionFault fault)
   return "unknown fault";
 }
 
+namespace
+{
+/// The session's filter keeps NaN guard, clamp and slew; its quiet gate is replaced by the ramp.
+ForceSafetyParameters withoutEngageGate(ForceSafetyParameters p)
+{
+  p.engageTicks = 1;
+  p.engageThreshold_N = std::numeric_limits<double>::infinity();
+  return p;
+}
+} // namespace
+
 HapticSession::HapticSession()
 {
+  this->setSafetyParameters(ForceSafetyParameters{});
   this->PublishedParameters.store(this->ControlParameters);
   this->TickParameters = this->ControlParameters;
 }
@@ -126,7 +139,22 @@ void HapticSession::setSafetyParameters(const ForceSafetyParameters& parameters)
     this->LastError = "setSafetyParameters: stop the session first";
     return;
   }
-  this->Safety.setParameters(parameters);
+  this->Safety.setParameters(withoutEngageGate(parameters));
+  ForceOnsetRampParameters ramp = this->Onset.parameters();
+  ramp.holdTicks = std::max(0, parameters.engageTicks);
+  ramp.quietThreshold_N = parameters.engageThreshold_N;
+  ramp.maxTickInterval_s = parameters.maxTickInterval_s;
+  this->Onset.setParameters(ramp);
+}
+
+void HapticSession::setOnsetRampParameters(const ForceOnsetRampParameters& parameters)
+{
+  if (this->Loop.running())
+  {
+    this->LastError = "setOnsetRampParameters: stop the session first";
+    return;
+  }
+  this->Onset.setParameters(parameters);
 }
 
 HapticParameters HapticSession::parameters() const
@@ -273,6 +301,7 @@ void HapticSession::emergencyStop() noexcept
 {
   this->Pipeline.zeroForce();
   this->Safety.reset();
+  this->Onset.reset(); // re-engage softly after a stall or a fault
   if (this->Device)
   {
     this->Device->write(Vec3{});
@@ -284,6 +313,7 @@ void HapticSession::tick(double time_s, double dt_s) noexcept
   if (this->ResetSafety.exchange(false))
   {
     this->Safety.reset();
+    this->Onset.reset();
   }
   this->PublishedParameters.tryLoad(this->TickParameters); // keeps the last copy on a race
   const ViewModel* vm = this->Exchange.acquire();
@@ -317,7 +347,9 @@ void HapticSession::tick(double time_s, double dt_s) noexcept
   {
     command = {};
     this->Pipeline.zeroForce();
+    this->Onset.reset(); // after clearFault() the force comes back through the ramp
   }
+  command = this->Onset.apply(command, dt_s);
   SafetyFault safety = SafetyFault::None;
   Vec3 force = this->Safety.apply(command, dt_s, &safety);
   if (safety == SafetyFault::NonFiniteForce || !force.isFinite())

@@ -2,6 +2,7 @@
 // HapticLoop or offline (deterministic) with a simulated device, through the SAME tick function.
 #pragma once
 
+#include "vtouchForceOnsetRamp.h"
 #include "vtouchForceSafetyFilter.h"
 #include "vtouchHapticDevice.h"
 #include "vtouchHapticLoop.h"
@@ -77,8 +78,14 @@ public:
   /// The device to drive (opened by the caller or by start()/runOffline()). Not while running.
   void setDevice(std::shared_ptr<HapticDevice> device);
   std::shared_ptr<HapticDevice> device() const { return this->Device; }
-  /// Final safety stage inside the tick (NaN guard, engage gate, clamp, slew).
+  /// Final safety stage inside the tick (NaN guard, clamp, slew). The filter's hard engage gate
+  /// is replaced by the soft onset ramp: engageTicks and engageThreshold_N set the ramp's hold
+  /// (zero output) and quiet threshold, maxTickInterval_s its credit per tick.
   void setSafetyParameters(const ForceSafetyParameters& parameters);
+  /// Soft onset after start, clearFault() or a device change: hold at zero, then scale the force
+  /// from 0 to 1 over rampTime_s (default 50 ms). Not while running.
+  void setOnsetRampParameters(const ForceOnsetRampParameters& parameters);
+  ForceOnsetRampParameters onsetRampParameters() const { return this->Onset.parameters(); }
 
   // --- parameters (published to the haptic thread without locks) ---
   HapticParameters parameters() const;
@@ -155,6 +162,7 @@ private:
 
   // Haptic-thread state.
   HapticPipeline Pipeline;
+  ForceOnsetRamp Onset;
   ForceSafetyFilter Safety;
   std::atomic<bool> ResetSafety{ false };
   HapticParameters TickParameters;

@@ -66,6 +66,8 @@ void LoopStatistics::reset(double nominalRate_Hz)
   this->Ticks.store(0);
   this->Overruns.store(0);
   this->Skipped.store(0);
+  this->Stalls.store(0);
+  this->StallTime_s.store(0.0);
   this->MaxError_us.store(0.0);
   this->MaxCost_us.store(0.0);
   this->Elapsed_s.store(0.0);
@@ -103,6 +105,15 @@ void LoopStatistics::recordOverrun(std::uint64_t skipped) noexcept
   this->Skipped.fetch_add(skipped, std::memory_order_relaxed);
 }
 
+void LoopStatistics::recordStall(double lateness_s) noexcept
+{
+  this->Stalls.fetch_add(1, std::memory_order_relaxed);
+  // Single writer (the loop thread): load + store is enough.
+  this->StallTime_s.store(
+    this->StallTime_s.load(std::memory_order_relaxed) + std::max(0.0, lateness_s),
+    std::memory_order_relaxed);
+}
+
 void LoopStatistics::setElapsed(double s) noexcept
 {
   this->Elapsed_s.store(s, std::memory_order_relaxed);
@@ -117,6 +128,11 @@ LoopStatisticsSummary LoopStatistics::summary() const
   s.skippedDeadlines = this->Skipped.load();
   const double elapsed = this->Elapsed_s.load();
   s.achievedRate_Hz = elapsed > 0.0 ? static_cast<double>(s.ticks) / elapsed : 0.0;
+  s.deadlines = s.ticks + s.skippedDeadlines;
+  s.stalls = this->Stalls.load();
+  s.stallTime_s = this->StallTime_s.load();
+  const double running = elapsed - s.stallTime_s;
+  s.achievedRateOutsideStalls_Hz = running > 0.0 ? static_cast<double>(s.ticks) / running : 0.0;
   s.periodErrorP50_us = percentile(this->ErrorHist, 0.5, &errorBinUpper_us);
   s.periodErrorP99_us = percentile(this->ErrorHist, 0.99, &errorBinUpper_us);
   s.periodErrorP999_us = percentile(this->ErrorHist, 0.999, &errorBinUpper_us);

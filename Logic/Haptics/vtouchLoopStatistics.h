@@ -16,7 +16,15 @@ struct LoopStatisticsSummary
   std::uint64_t ticks = 0;
   std::uint64_t overruns = 0;         ///< ticks that ended after the next deadline
   std::uint64_t skippedDeadlines = 0; ///< deadlines dropped after a stall (no catch-up burst)
-  double periodErrorP50_us = 0.0;     ///< lateness of the tick start against its absolute deadline
+  /// Deadlines that came due: ticks + skippedDeadlines. ticks / deadlines is the fraction served.
+  std::uint64_t deadlines = 0;
+  /// Wake-ups later than the watchdog (whole-host stalls), and the time they lost, s.
+  std::uint64_t stalls = 0;
+  double stallTime_s = 0.0;
+  /// ticks / (elapsed - stallTime): the rate the loop held while the host ran it. Compare with
+  /// achievedRate_Hz (all time) and skippedDeadlines to tell host stalls from a slow loop.
+  double achievedRateOutsideStalls_Hz = 0.0;
+  double periodErrorP50_us = 0.0; ///< lateness of the tick start against its absolute deadline
   double periodErrorP99_us = 0.0;
   double periodErrorP999_us = 0.0;
   double periodErrorMax_us = 0.0;
@@ -34,6 +42,8 @@ public:
   void recordPeriodError(double lateness_us) noexcept;
   void recordTickCost(double cost_us) noexcept;
   void recordOverrun(std::uint64_t skipped) noexcept;
+  /// A wake-up `lateness_s` after its deadline, beyond the watchdog (a host stall).
+  void recordStall(double lateness_s) noexcept;
   void setElapsed(double elapsed_s) noexcept;
   LoopStatisticsSummary summary() const;
 
@@ -47,6 +57,8 @@ private:
   std::atomic<std::uint64_t> Ticks{ 0 };
   std::atomic<std::uint64_t> Overruns{ 0 };
   std::atomic<std::uint64_t> Skipped{ 0 };
+  std::atomic<std::uint64_t> Stalls{ 0 };
+  std::atomic<double> StallTime_s{ 0.0 };
   std::atomic<double> MaxError_us{ 0.0 };
   std::atomic<double> MaxCost_us{ 0.0 };
   std::atomic<double> Elapsed_s{ 0.0 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vtouch
 {
@@ -130,6 +131,132 @@ double Tracer::advance(const ViewModel& vm, int a, int b, double fromT, double t
   return std::fabs(toT - fromT) * (vm.screen_px(b) - vm.screen_px(a)).norm();
 }
 
+bool Tracer::foldAhead(const ViewModel& vm,
+  const Vec2& cursor_px,
+  const Vec2& here_px,
+  double reverseProj_px,
+  int* pointOut,
+  int* behindOut) const
+{
+  const AgentLocation& loc = this->Location;
+  if (this->Direction == 0 || !(this->foldLookAhead_px > 0.0) || loc.to < 0)
+  {
+    return false;
+  }
+  // Start at the end ahead in the direction of travel (advance() signs Direction by index order).
+  int cur = loc.from;
+  int prev = loc.to;
+  if (loc.t > 0.0)
+  {
+    const bool headingToTo = this->Direction == ((loc.to > loc.from) ? 1 : -1);
+    cur = headingToTo ? loc.to : loc.from;
+    prev = headingToTo ? loc.from : loc.to;
+  }
+  else
+  {
+    // At a point loc.to is the neighbour behind: step to the single one ahead.
+    int nb[kMaxNeighbours];
+    const int count = vm.topology().neighbours(cur, nb, kMaxNeighbours);
+    int next = -1;
+    for (int i = 0; i < count; ++i)
+    {
+      if (nb[i] != prev)
+      {
+        if (next >= 0)
+        {
+          return false; // a junction: the branch choice is the projection rule's business
+        }
+        next = nb[i];
+      }
+    }
+    if (next < 0)
+    {
+      return false;
+    }
+    prev = cur;
+    cur = next;
+  }
+  // What reversing would achieve: the cursor's distance to the line back along the path.
+  const double rNorm = (cursor_px - here_px).norm();
+  const double residual = std::sqrt(std::max(0.0, rNorm * rNorm - reverseProj_px * reverseProj_px));
+  const double good = residual + this->deadBand_px + this->directionHysteresis * rNorm;
+  double arc = (vm.screen_px(cur) - here_px).norm();
+  int nb[kMaxNeighbours];
+  for (int k = 0; k < kLookAhead && arc <= this->foldLookAhead_px; ++k)
+  {
+    // A point ahead, within the look-ahead, that the cursor is about as close to as reversing
+    // would bring it: the path folds back in screen space and continuing is as good.
+    const double d = (cursor_px - vm.screen_px(cur)).norm();
+    if (d <= good && d < rNorm) // and strictly closer than now: never on a straight reversal
+    {
+      *pointOut = cur;
+      *behindOut = prev;
+      return true;
+    }
+    const int count = vm.topology().neighbours(cur, nb, kMaxNeighbours);
+    int next = -1;
+    for (int i = 0; i < count; ++i)
+    {
+      if (nb[i] != prev)
+      {
+        if (next >= 0)
+        {
+          return false;
+        }
+        next = nb[i];
+      }
+    }
+    if (next < 0)
+    {
+      return false;
+    }
+    arc += (vm.screen_px(next) - vm.screen_px(cur)).norm();
+    prev = cur;
+    cur = next;
+  }
+  return false;
+}
+
+double Tracer::crossFold(const ViewModel& vm, int point, int behind)
+{
+  // Walk from the agent to `point` along the chain (the fold search saw no junction), keeping the
+  // torsion and direction bookkeeping of advance().
+  AgentLocation& loc = this->Location;
+  double travelled = 0.0;
+  int cur = loc.from;
+  int prev = loc.to;
+  if (loc.t > 0.0)
+  {
+    const bool headingToTo = this->Direction == ((loc.to > loc.from) ? 1 : -1);
+    travelled += headingToTo ? this->advance(vm, loc.from, loc.to, loc.t, 1.0)
+                             : this->advance(vm, loc.from, loc.to, loc.t, 0.0);
+    cur = headingToTo ? loc.to : loc.from;
+    prev = headingToTo ? loc.from : loc.to;
+  }
+  int nb[kMaxNeighbours];
+  for (int k = 0; k < kLookAhead && cur != point; ++k)
+  {
+    const int count = vm.topology().neighbours(cur, nb, kMaxNeighbours);
+    int next = -1;
+    for (int i = 0; i < count && next < 0; ++i)
+    {
+      if (nb[i] != prev)
+      {
+        next = nb[i];
+      }
+    }
+    if (next < 0)
+    {
+      break;
+    }
+    travelled += this->advance(vm, cur, next, 0.0, 1.0);
+    prev = cur;
+    cur = next;
+  }
+  loc = { cur, cur == point ? behind : prev, 0.0 };
+  return travelled;
+}
+
 double Tracer::follow(const ViewModel& vm, const Vec2& cursor_px)
 {
   if (this->State != InteractionState::Tracing || !this->Location.valid() || !cursor_px.isFinite())
@@ -143,6 +270,7 @@ double Tracer::follow(const ViewModel& vm, const Vec2& cursor_px)
   // The agent keeps `keep` behind the cursor's projection: a hysteresis (no stick-slip steps once
   // moving), and with trail_px the drag threshold of Ikits' eq. 8.
   const double keep = std::max(this->deadBand_px, this->trail_px);
+  bool folded = false; // at most one fold crossing per tick
   for (int step = 0; step < this->maxStepsPerTick; ++step)
   {
     const Vec2 here = loc.t > 0.0 && loc.to >= 0
@@ -163,6 +291,20 @@ double Tracer::follow(const ViewModel& vm, const Vec2& cursor_px)
         break;
       }
       const double t0 = loc.t;
+      const int towardTo = (loc.to > loc.from) ? 1 : -1;
+      const bool reversing =
+        this->Direction != 0 && ((proj > 0.0) != (this->Direction == towardTo));
+      int foldPoint = -1;
+      int foldBehind = -1;
+      if (reversing && !folded &&
+          this->foldAhead(vm, cursor_px, here, std::fabs(proj), &foldPoint, &foldBehind))
+      {
+        // Hysteresis at a screen-space fold (projection cusp): the path just ahead turns back
+        // toward the cursor, so keep the direction of travel and cross the fold.
+        travelled += this->crossFold(vm, foldPoint, foldBehind);
+        folded = true;
+        continue;
+      }
       if (proj > 0.0)
       {
         const double tNew = t0 + want / len;
@@ -193,6 +335,10 @@ double Tracer::follow(const ViewModel& vm, const Vec2& cursor_px)
     const int count = topo.neighbours(loc.from, nb, kMaxNeighbours);
     int best = -1;
     double bestProj = this->deadBand_px;
+    // The neighbour behind the direction of travel (loc.to holds it at a point, see below).
+    const int behind = this->Direction != 0 ? loc.to : -1;
+    int forward = -1;
+    double forwardProj = this->deadBand_px;
     for (int i = 0; i < count; ++i)
     {
       const double proj = r.dot(this->directionTo(vm, loc.from, nb[i]));
@@ -200,6 +346,30 @@ double Tracer::follow(const ViewModel& vm, const Vec2& cursor_px)
       {
         bestProj = proj;
         best = nb[i];
+      }
+      if (nb[i] != behind && proj > forwardProj)
+      {
+        forwardProj = proj;
+        forward = nb[i];
+      }
+    }
+    // Hysteresis at projection cusps: when going back beats going on by only a sliver of
+    // |r| (the two screen directions nearly coincide), keep the direction of travel; when the
+    // path ahead folds back toward the cursor within the look-ahead, cross the fold.
+    if (best >= 0 && best == behind)
+    {
+      int foldPoint = -1;
+      int foldBehind = -1;
+      if (forward >= 0 && bestProj - forwardProj <= this->directionHysteresis * r.norm())
+      {
+        best = forward;
+        bestProj = forwardProj;
+      }
+      else if (!folded && this->foldAhead(vm, cursor_px, here, bestProj, &foldPoint, &foldBehind))
+      {
+        travelled += this->crossFold(vm, foldPoint, foldBehind);
+        folded = true;
+        continue;
       }
     }
     const double want = bestProj - keep;

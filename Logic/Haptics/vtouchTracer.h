@@ -51,6 +51,17 @@ public:
   /// Trailing distance (pixels, >= 0): the agent stops this far behind the cursor's projection
   /// (the drag threshold of Ikits' eq. 8 along the tangent; 0 = the agent catches up fully).
   double trail_px = 0.0;
+  /// Direction hysteresis at projection cusps (a spiral seen edge-on, a vessel turning back in
+  /// screen space), as a fraction of the cursor's distance to the agent, [0, 1]. When reversing
+  /// would beat continuing in the current direction of travel by no more than this fraction of
+  /// |cursor - agent| (the projections are nearly equal: the candidate directions nearly
+  /// coincide on screen), the agent keeps its direction instead of flip-flopping. 0 = plain
+  /// largest projection. Default 0.1 (directions within ~6 deg of each other).
+  double directionHysteresis = 0.1;
+  /// Screen arc length (pixels) searched ahead for a fold before a reversal is accepted: when the
+  /// path within it turns back to the cursor (a smooth cusp sampled by many points), the agent
+  /// crosses the fold instead of reversing. 0 disables. Default 3 px.
+  double foldLookAhead_px = 3.0;
   /// Safety bound on graph steps per tick (a long jump is finished over the next ticks).
   int maxStepsPerTick = 4096;
   /// Contact refinement: after the O(1) contact-map lookup, the nearest point within this many
@@ -83,6 +94,17 @@ public:
 private:
   Vec2 directionTo(const ViewModel& vm, int a, int m) const;
   double advance(const ViewModel& vm, int a, int b, double fromT, double toT);
+  /// A reversal of `reverseProj_px` is requested: looks ahead along the direction of travel
+  /// (no junction, at most foldLookAhead_px of screen arc) for a point where the path has folded
+  /// back to the cursor. True with that point and its neighbour behind it.
+  bool foldAhead(const ViewModel& vm,
+    const Vec2& cursor_px,
+    const Vec2& here_px,
+    double reverseProj_px,
+    int* pointOut,
+    int* behindOut) const;
+  /// Moves the agent forward along the chain to `point` (found by foldAhead()).
+  double crossFold(const ViewModel& vm, int point, int behind);
 
   InteractionState State = InteractionState::Exploring;
   AgentLocation Location;

@@ -9,6 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <ctime>
+#include <pthread.h>
 #include <chrono>
 #include <thread>
 
@@ -253,6 +257,137 @@ TEST(HapticSession, RealTimeLoopPublishesStateWhileGuiSwapsViews)
   EXPECT_FALSE(session.isRunning());
   EXPECT_EQ(session.fault(), SessionFault::None);
   EXPECT_GT(session.statistics().ticks, 200u);
+}
+
+// --- Host stalls (the whole thread stops between ticks) vs. a stalled tick ---------------------
+
+std::atomic<bool> gInTick{ false };
+std::atomic<bool> gLandedInTick{ false };
+
+extern "C" void stallThisThread(int)
+{
+  // Async-signal-safe: emulates a hypervisor stall of the loop thread between two ticks.
+  if (gInTick.load())
+  {
+    gLandedInTick.store(true);
+  }
+  timespec ts{ 0, 40000000 }; // 40 ms, above the 20 ms watchdog
+  while (nanosleep(&ts, &ts) == -1 && errno == EINTR)
+  {
+  }
+}
+
+class ThreadRecordingTarget : public HapticTickTarget
+{
+public:
+  std::atomic<int> ticks{ 0 };
+  std::atomic<int> stops{ 0 };
+  std::atomic<bool> hasThread{ false };
+  pthread_t thread{};
+  void tick(double, double) noexcept override
+  {
+    gInTick.store(true);
+    if (!this->hasThread.load())
+    {
+      this->thread = pthread_self();
+      this->hasThread.store(true);
+    }
+    this->ticks.fetch_add(1);
+    gInTick.store(false);
+  }
+  void emergencyStop() noexcept override { this->stops.fetch_add(1); }
+};
+
+/// Runs a loop, stalls its thread once outside a tick, returns false if the stall hit a tick.
+bool runWithHostStall(bool faultOnLateWake,
+  LoopFault& fault,
+  LoopStatisticsSummary& stats,
+  int& stops,
+  int& ticksAfterStall)
+{
+  struct sigaction sa
+  {
+  };
+  sa.sa_handler = &stallThisThread;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGUSR1, &sa, nullptr);
+  gLandedInTick.store(false);
+  ThreadRecordingTarget target;
+  HapticLoop loop;
+  LoopOptions o;
+  o.realtimePriority = 0;
+  o.watchdog_s = 0.02;
+  o.faultOnLateWake = faultOnLateWake;
+  EXPECT_TRUE(loop.start(target, o));
+  EXPECT_TRUE(waitFor([&] { return target.ticks.load() >= 20 && target.hasThread.load(); }));
+  pthread_kill(target.thread, SIGUSR1);
+  EXPECT_TRUE(waitFor([&] { return loop.statistics().stalls >= 1 || gLandedInTick.load(); }));
+  const int atStall = target.ticks.load();
+  EXPECT_TRUE(waitFor([&] { return target.ticks.load() >= atStall + 20; }));
+  ticksAfterStall = target.ticks.load() - atStall;
+  fault = loop.fault();
+  loop.stop();
+  stats = loop.statistics();
+  stops = target.stops.load();
+  return !gLandedInTick.load();
+}
+
+TEST(HapticLoop, HostStallBetweenTicksZeroesForceButDoesNotLatchAFault)
+{
+  LoopFault fault = LoopFault::None;
+  LoopStatisticsSummary s;
+  int stops = 0;
+  int after = 0;
+  bool clean = false;
+  for (int attempt = 0; attempt < 5 && !clean; ++attempt)
+  {
+    clean = runWithHostStall(false, fault, s, stops, after);
+  }
+  ASSERT_TRUE(clean) << "the injected stall kept landing inside a tick";
+  EXPECT_EQ(fault, LoopFault::None); // the thread itself made progress: no latched fault
+  EXPECT_GE(s.stalls, 1u);
+  EXPECT_GE(s.stallTime_s, 0.02);
+  EXPECT_GE(stops, 2);                // zeroed at the stall (re-engage softly), and at stop
+  EXPECT_GE(s.skippedDeadlines, 10u); // the stalled deadlines were skipped, not caught up
+  EXPECT_EQ(s.deadlines, s.ticks + s.skippedDeadlines);
+  EXPECT_GE(after, 20); // and the loop went on ticking
+}
+
+TEST(HapticLoop, HostStallLatchesTheFaultWhenAskedTo)
+{
+  LoopFault fault = LoopFault::None;
+  LoopStatisticsSummary s;
+  int stops = 0;
+  int after = 0;
+  bool clean = false;
+  for (int attempt = 0; attempt < 5 && !clean; ++attempt)
+  {
+    clean = runWithHostStall(true, fault, s, stops, after);
+  }
+  ASSERT_TRUE(clean);
+  EXPECT_EQ(fault, LoopFault::WatchdogOverrun);
+  EXPECT_GE(stops, 2);
+}
+
+TEST(LoopStatistics, StallsAreReportedApartFromTheAchievedRate)
+{
+  LoopStatistics stats;
+  stats.reset(1000.0);
+  for (int i = 0; i < 1000; ++i)
+  {
+    stats.recordPeriodError(5.0);
+  }
+  stats.recordStall(0.05);
+  stats.recordOverrun(49);
+  stats.setElapsed(1.05);
+  const LoopStatisticsSummary s = stats.summary();
+  EXPECT_EQ(s.ticks, 1000u);
+  EXPECT_EQ(s.skippedDeadlines, 49u);
+  EXPECT_EQ(s.deadlines, 1049u);
+  EXPECT_EQ(s.stalls, 1u);
+  EXPECT_NEAR(s.stallTime_s, 0.05, 1e-12);
+  EXPECT_NEAR(s.achievedRate_Hz, 1000.0 / 1.05, 1e-9);       // all time, stalls included
+  EXPECT_NEAR(s.achievedRateOutsideStalls_Hz, 1000.0, 1e-9); // while the host ran the loop
 }
 
 } // namespace

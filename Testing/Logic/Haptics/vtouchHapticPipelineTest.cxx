@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 namespace vtouch
 {
 namespace
@@ -109,6 +111,99 @@ TEST(HapticPipeline, SpiralSeenEdgeOnGivesBoundedPerTickIncrements)
   EXPECT_GT(lastPoint, 2000);             // the agent followed through the cusps
   EXPECT_GT(worstTargetJump, 1.0);        // the raw law jumps at the cusps ...
   EXPECT_LE(worstIncrement, 0.1 + 1e-12); // ... the rendered force moves <= 100 N/s * 1 ms
+}
+
+TEST(HapticPipeline, EdgeOnSpiralWithDitheringHandIsTracedMonotonicallyWithBoundedIncrements)
+{
+  // A planar spiral seen exactly edge-on (the cusp of Yi & Hayward's Figure 4): on screen it runs
+  // back and forth along one line. A scripted hand follows it with a seeded dither; at each cusp
+  // the projections on "back" and "on" coincide and the tracer's hysteresis must keep going.
+  const QSkeleton s = singlePath(
+    [](double u)
+    {
+      const double t = 4 * kPi * u;
+      const double r = 8 + 3 * t;
+      return Vec3{ r * std::cos(t), 0.0, r * std::sin(t) };
+    },
+    1200);
+  PipelineRig rig;
+  rig.view = buildView(s, topCamera({ 0, 0, 0 }, 0.25), 12.0);
+  rig.params.maxForceRate_N_per_s = 100.0;
+  rig.pipeline.setCursor_px(rig.view->screen_px(0));
+  rig.step();
+  ASSERT_EQ(rig.pipeline.tracer().state(), InteractionState::Tracing);
+  // Edge-on, the contact map picks the nearest in depth among many overlapping points: start
+  // the agent at the path's head instead (the cursor is there).
+  rig.pipeline.tracer().placeAt(*rig.view, 0);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> dither_mm(-0.03, 0.03); // +-0.12 px at 4 px/mm
+  const Vec3 base = rig.device.position_Device_mm;
+  double worstIncrement = 0.0;
+  double worstTargetJump = 0.0;
+  int backward = 0;
+  int previousPoint = 0;
+  Vec2 previousForce;
+  Vec2 previousTarget;
+  const Vec2 start = rig.view->screen_px(0);
+  for (int k = 1; k < 1200; ++k)
+  {
+    const Vec2 goal = (rig.view->screen_px(k) - start) * 0.25; // hand mm
+    rig.device.position_Device_mm.x = base.x + goal.x + dither_mm(rng);
+    rig.device.position_Device_mm.y = base.y + goal.y + dither_mm(rng);
+    const AgentState st = rig.step();
+    ASSERT_EQ(st.state, InteractionState::Tracing) << k;
+    backward += st.point < previousPoint ? 1 : 0;
+    previousPoint = std::max(previousPoint, st.point);
+    if (k > 1)
+    {
+      worstIncrement = std::max(worstIncrement, (st.force_N - previousForce).norm());
+      worstTargetJump = std::max(worstTargetJump, (st.targetForce_N - previousTarget).norm());
+    }
+    previousForce = st.force_N;
+    previousTarget = st.targetForce_N;
+  }
+  EXPECT_EQ(backward, 0);                 // monotone along the path: no back-and-forth at the cusps
+  EXPECT_GE(previousPoint, 1190);         // followed to the end
+  EXPECT_GT(worstTargetJump, 0.1);        // the raw law does jump at the cusps ...
+  EXPECT_LE(worstIncrement, 0.1 + 1e-12); // ... the rendered force moves <= 100 N/s * 1 ms
+}
+
+TEST(HapticPipeline, ProxyDragHoldsTangentForceAtThresholdWhileDragging)
+{
+  // Ikits et al. eq. 8: along a Drag axis the proxy stays put while |F_t| <= tau_t and, once
+  // dragged, trails the hand so that the coupler force stays tau_t. Hand moving steadily along a
+  // straight vessel: the tangential force settles at -(tau_t + b_c v), the normal force at 0.
+  PipelineRig rig;
+  rig.view = buildView(straightLine({ -40, 0, 0 }, { 40, 0, 0 }, 0.25), topCamera({ 0, 0, 0 }));
+  rig.params.forceLaw = ForceLawId::ConstraintProxy;
+  rig.params.proxyTangentDrag = true;
+  rig.params.maxForceRate_N_per_s = 1e9;
+  AgentState st = rig.step(); // contact at the viewport centre
+  ASSERT_EQ(st.state, InteractionState::Tracing);
+  const double v_mm_per_tick = 0.02; // 20 mm/s
+  for (int k = 0; k < 800; ++k)
+  {
+    rig.device.position_Device_mm.x += v_mm_per_tick;
+    rig.device.velocity_Device_mm_per_s.x = v_mm_per_tick * 1000.0;
+    st = rig.step();
+  }
+  const double tau = rig.params.proxyTangentThreshold_N;
+  const double damping = rig.params.proxyDamping_N_s_per_m * 0.02;
+  EXPECT_NEAR(st.force_N.x, -(tau + damping), 0.01);
+  EXPECT_NEAR(st.force_N.y, 0.0, 1e-9);
+  // Stopping: the proxy stays, the spring force stays at tau (not above) and never reverses.
+  rig.device.velocity_Device_mm_per_s.x = 0.0;
+  for (int k = 0; k < 50; ++k)
+  {
+    st = rig.step();
+  }
+  EXPECT_NEAR(st.force_N.x, -tau, 0.01);
+  // Pulling back by less than 2 tau / k_c keeps the proxy still (the stick band of eq. 8).
+  rig.device.position_Device_mm.x -= 2.0; // 2 mm < 2 * 0.3 / 200 m = 3 mm
+  st = rig.step();
+  st = rig.step();
+  const double kc = rig.params.proxyStiffness_N_per_m;
+  EXPECT_NEAR(st.force_N.x, -tau + kc * 2e-3, 0.01);
 }
 
 TEST(HapticPipeline, ReindexingFreezesCursorWhileHandMoves)

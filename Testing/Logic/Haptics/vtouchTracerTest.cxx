@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
 
 namespace vtouch
 {
@@ -196,6 +197,81 @@ TEST(Tracer, NeverLeavesTheCenterline)
     }
   }
   EXPECT_LT(worst, 1e-9);
+}
+
+/// A planar spiral seen exactly edge-on: on screen it runs back and forth along one line, with a
+/// cusp at every turn where the directions to the previous and the next point coincide.
+QSkeleton edgeOnSpiral(int count)
+{
+  return singlePath(
+    [](double u)
+    {
+      const double t = 4 * kPi * u;
+      const double r = 8 + 3 * t;
+      return Vec3{ r * std::cos(t), 0.0, r * std::sin(t) };
+    },
+    count);
+}
+
+/// Drives the cursor along the projected path with a seeded dither; returns how many ticks the
+/// agent's point index went backward, and the last point reached.
+std::pair<int, int> traceWithDither(bool hysteresis, double dither_px)
+{
+  const QSkeleton s = edgeOnSpiral(1200);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }, 0.25), 12.0);
+  Tracer tracer;
+  if (!hysteresis)
+  {
+    tracer.directionHysteresis = 0.0;
+    tracer.foldLookAhead_px = 0.0;
+  }
+  tracer.placeAt(*vm, 0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-dither_px, dither_px);
+  int backward = 0;
+  int previous = 0;
+  for (int k = 1; k < vm->topology().pointCount(); ++k)
+  {
+    const Vec2 cursor = vm->screen_px(k) + Vec2{ jitter(rng), jitter(rng) };
+    tracer.follow(*vm, cursor);
+    const int point = tracer.sample(*vm).point;
+    backward += point < previous ? 1 : 0;
+    previous = std::max(previous, point);
+  }
+  return { backward, tracer.sample(*vm).point };
+}
+
+TEST(Tracer, KeepsDirectionOfTravelThroughCuspsOfEdgeOnSpiralWithDither)
+{
+  const auto [backward, last] = traceWithDither(true, 0.15);
+  EXPECT_EQ(backward, 0); // the point index is monotone: no back-and-forth at the cusps
+  EXPECT_GE(last, 1195);  // and the agent followed the hand to the end
+}
+
+TEST(Tracer, WithoutHysteresisTheAgentFlipFlopsAtEdgeOnCusps)
+{
+  // The failure the hysteresis fixes (documents the test scene is a real cusp case).
+  const auto [backward, last] = traceWithDither(false, 0.15);
+  EXPECT_TRUE(backward > 0 || last < 1195) << backward << " " << last;
+}
+
+TEST(Tracer, ReversesWhenTheHandClearlyGoesBack)
+{
+  // Hysteresis must not hold a deliberate reversal on a straight vessel.
+  auto vm = buildView(straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25), topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  ASSERT_TRUE(tracer.tryContact(*vm, px(0, 0)));
+  for (int k = 0; k <= 100; ++k)
+  {
+    tracer.follow(*vm, px(0.05 * k, 0));
+  }
+  EXPECT_EQ(tracer.directionOfTravel(), 1);
+  for (int k = 0; k <= 100; ++k)
+  {
+    tracer.follow(*vm, px(5.0 - 0.1 * k, 0));
+  }
+  EXPECT_EQ(tracer.directionOfTravel(), -1);
+  EXPECT_NEAR(tracer.sample(*vm).position_World_mm.x, -5.0, 0.07);
 }
 
 } // namespace
