@@ -325,6 +325,14 @@ void vtkVesselTouchHapticSession::SetPointerPressed(bool pressed)
   }
 }
 
+void vtkVesselTouchHapticSession::SetPointerButtons(int buttons)
+{
+  if (this->Internals->Pointer)
+  {
+    this->Internals->Pointer->setButtons(static_cast<std::uint32_t>(buttons));
+  }
+}
+
 vtkDataObject* vtkVesselTouchHapticSession::UpdateInput()
 {
   // Outside a pipeline pass (Start, RunOffline): bring the input up to date first.
@@ -744,6 +752,21 @@ double* vtkVesselTouchHapticSession::GetAgentState()
     a.hand_Device_mm.y };
   std::copy(values, values + 23, this->AgentState);
   return this->AgentState;
+}
+
+double* vtkVesselTouchHapticSession::GetDeviceForce()
+{
+  vtouch::Vec3 force_N{};
+  auto device =
+    std::dynamic_pointer_cast<vtouch::SafeHapticDevice>(this->Internals->Session.device());
+  if (device && device->isOpen())
+  {
+    force_N = device->lastSentForce_N();
+  }
+  this->DeviceForce[0] = force_N.x;
+  this->DeviceForce[1] = force_N.y;
+  this->DeviceForce[2] = force_N.z;
+  return this->DeviceForce;
 }
 
 int* vtkVesselTouchHapticSession::GetSessionStatus()

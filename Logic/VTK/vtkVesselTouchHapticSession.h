@@ -129,6 +129,9 @@ public:
   /// POINTER: the mouse in device mm (from the view binding) and the pressure modifier.
   void SetPointerPosition(double x_mm, double y_mm);
   void SetPointerPressed(bool pressed);
+  /// POINTER: the mouse buttons, bit i for button i (a press of bit 0 returns from tracing to
+  /// exploring; bit 1 held re-indexes). Default 0.
+  void SetPointerButtons(int buttons);
   /// Safety layer: largest force sent, N (also limited by the device). Default 3.
   vtkSetMacro(MaxForce, double);
   vtkGetMacro(MaxForce, double);
@@ -220,6 +223,9 @@ public:
   /// position x y z (world mm), tangent x y z, direction of travel, torsion angle (rad), k(P) (N),
   /// force x y (N), target force x y (N), hand x y (device mm).
   double* GetAgentState() VTK_SIZEHINT(23);
+  /// The force last sent to the device, x y z (N, device frame, after the safety layer); zero
+  /// when no device is open, and after Stop() (which zeroes the force before closing).
+  double* GetDeviceForce() VTK_SIZEHINT(3);
   /// running (0/1), fault code (0 none), log entries, dropped log entries, skeleton paths,
   /// skeleton points.
   int* GetSessionStatus() VTK_SIZEHINT(6);
@@ -312,6 +318,7 @@ private:
 
   double Statistics[12] = {};
   double AgentState[23] = {};
+  double DeviceForce[3] = {};
   int SessionStatus[6] = {};
 };
 

@@ -1,63 +1,466 @@
 #include "pqVesselTouchDockPanel.h"
+#include "ui_pqVesselTouchDockPanel.h"
 
+#include "pqVesselTouchCenterlineWorkflow.h"
+#include "pqVesselTouchDatasetSummary.h"
+#include "pqVesselTouchPanelSelfTest.h"
+#include "pqVesselTouchPanelValues.h"
+#include "pqVesselTouchSessionBinding.h"
+#include "pqVesselTouchSessionStatus.h"
+#include "pqVesselTouchViewBinding.h"
+
+#include "qVesselTouchDeviceWidget.h"
+#include "qVesselTouchForceLawWidget.h"
+#include "qVesselTouchForceZonesWidget.h"
+#include "qVesselTouchHapticZoomWidget.h"
 #include "qVesselTouchInfoWidget.h"
+#include "qVesselTouchLoopStatsWidget.h"
 
 #include "pqActiveObjects.h"
+#include "pqApplicationCore.h"
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
+#include "pqRenderView.h"
+#include "pqSettings.h"
 
 #include "vtkDataSetAttributes.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
 #include "vtkPVDataSetAttributesInformation.h"
 #include "vtkPVVersion.h"
+#include "vtkPVXMLElement.h"
+#include "vtkSMProperty.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxy.h"
+#include "vtkSMProxyLocator.h"
 #include "vtkVesselTouchVersion.h"
 
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QScrollArea>
+#include <QSignalBlocker>
 #include <QTimer>
 #include <QtDebug>
 
+#include <algorithm>
+
+namespace
+{
+/// Status refresh period while a session exists, ms (~10 Hz).
+constexpr int kStatusPeriod_ms = 100;
+} // namespace
+
+class pqVesselTouchDockPanel::pqInternals
+{
+public:
+  Ui::pqVesselTouchDockPanel Ui;
+  pqVesselTouchSessionBinding* Binding = nullptr;
+  pqVesselTouchCenterlineWorkflow* Centerlines = nullptr;
+  QTimer StatusTimer;
+  QPointer<pqPipelineSource> Source;
+  bool Revealed = false;
+  bool Syncing = false;
+  bool Running = false;
+  /// The panel's own last error (a failed pick, no centerline...) and the session's (its last
+  /// error or fault); the red line shows the session's first.
+  QString PanelError;
+  QString SessionError;
+
+  pqVesselTouchPanelValues fromWidgets() const
+  {
+    pqVesselTouchPanelValues v;
+    v.forceLaw = static_cast<int>(this->Ui.forceLawWidget->forceLaw());
+    v.law = this->Ui.forceLawWidget->parameters();
+    v.zoom = this->Ui.zoomWidget->ratio();
+    v.zoneZeroBelow = this->Ui.zonesWidget->zeroBelow();
+    v.zoneSaturateAbove = this->Ui.zonesWidget->saturateAbove();
+    v.deviceId = this->Ui.deviceWidget->currentDeviceId();
+    return v;
+  }
+
+  void toWidgets(const pqVesselTouchPanelValues& v, double zoneGain_N)
+  {
+    this->Syncing = true;
+    if (v.forceLaw >= 0 && v.forceLaw < qVesselTouchForceLawWidget::kForceLawCount)
+    {
+      this->Ui.forceLawWidget->setForceLaw(v.forceLaw);
+    }
+    this->Ui.forceLawWidget->setParameters(v.law);
+    this->Ui.zoomWidget->setRatio(v.zoom);
+    this->Ui.zonesWidget->setThresholds(v.zoneZeroBelow, v.zoneSaturateAbove);
+    this->Ui.zonesWidget->setGain_N(v.activeGain_N(zoneGain_N));
+    this->Ui.deviceWidget->setCurrentDeviceId(v.deviceId);
+    this->Syncing = false;
+  }
+
+  void saveSettings() const
+  {
+    if (pqSettings* settings = pqApplicationCore::instance()->settings())
+    {
+      this->fromWidgets().save(*settings);
+    }
+  }
+
+  void writeSession()
+  {
+    const pqVesselTouchPanelValues values = this->fromWidgets();
+    const double zoneGain_N = values.activeGain_N(this->Ui.zonesWidget->gain_N());
+    this->Binding->writeProperties(
+      [&](vtkSMProxy* session) { values.writeToProxy(session, zoneGain_N); });
+  }
+};
+
 pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
   : QDockWidget(tr("VesselTouch"), parentObject)
+  , Internals(new pqInternals)
 {
-  this->Info = new qVesselTouchInfoWidget(this);
-  this->Info->setObjectName("VesselTouchInfo");
-  this->Info->setVersion("VesselTouch", vtkVesselTouchVersion::GetVesselTouchVersion());
-  this->Info->setVersion("ParaView", PARAVIEW_VERSION_FULL);
-  this->Info->setVersion("VTK", vtkVesselTouchVersion::GetVTKVersion());
-  this->Info->setVersion("ITK", vtkVesselTouchVersion::GetITKVersion());
-  this->Info->setVersion("hidapi", vtkVesselTouchVersion::GetHIDAPIVersion());
+  pqInternals& in = *this->Internals;
+  auto* content = new QWidget(this);
+  in.Ui.setupUi(content);
+  in.Ui.infoWidget->setObjectName("VesselTouchInfo");
+  in.Ui.infoWidget->setVersion("VesselTouch", vtkVesselTouchVersion::GetVesselTouchVersion());
+  in.Ui.infoWidget->setVersion("ParaView", PARAVIEW_VERSION_FULL);
+  in.Ui.infoWidget->setVersion("VTK", vtkVesselTouchVersion::GetVTKVersion());
+  in.Ui.infoWidget->setVersion("ITK", vtkVesselTouchVersion::GetITKVersion());
+  in.Ui.infoWidget->setVersion("hidapi", vtkVesselTouchVersion::GetHIDAPIVersion());
+  in.Ui.stopButton->setEnabled(false);
 
   auto* scroll = new QScrollArea(this);
   scroll->setObjectName("VesselTouchScroll");
   scroll->setWidgetResizable(true);
-  scroll->setWidget(this->Info);
+  scroll->setWidget(content);
   this->setWidget(scroll);
+
+  in.Binding = new pqVesselTouchSessionBinding(this);
+  in.Centerlines = new pqVesselTouchCenterlineWorkflow(in.Ui, this);
+
+  in.StatusTimer.setInterval(kStatusPeriod_ms);
+  QObject::connect(
+    &in.StatusTimer, &QTimer::timeout, this, &pqVesselTouchDockPanel::updateSessionStatus);
+
+  this->setUpDevices();
+  pqVesselTouchPanelValues saved;
+  if (pqSettings* settings = pqApplicationCore::instance()->settings())
+  {
+    saved.load(*settings);
+  }
+  in.toWidgets(saved, saved.activeGain_N(1.0));
+  this->connectWidgets();
 
   QObject::connect(&pqActiveObjects::instance(),
     &pqActiveObjects::sourceChanged,
     this,
     &pqVesselTouchDockPanel::setActiveSource);
+  QObject::connect(&pqActiveObjects::instance(),
+    &pqActiveObjects::viewChanged,
+    this,
+    &pqVesselTouchDockPanel::activeViewChanged);
+  QObject::connect(pqApplicationCore::instance(),
+    &pqApplicationCore::stateLoaded,
+    this,
+    [this]() { QTimer::singleShot(0, this, &pqVesselTouchDockPanel::pullFromSession); });
+  // The agent cone and the mouse in the render view follow this panel's session.
+  new pqVesselTouchViewBinding(this);
   this->setActiveSource(pqActiveObjects::instance().activeSource());
+  this->onSessionProxyChanged(in.Binding->proxy());
 
   // ParaView adds plugin docks hidden and restores its saved window state after start-up, so the
   // panel shows itself the first time a dataset becomes active (the user may close it afterwards
   // like any other panel).
   QTimer::singleShot(0, this, &pqVesselTouchDockPanel::revealOnce);
+
+  if (!qEnvironmentVariableIsEmpty("VESSELTOUCH_GUI_SELFTEST"))
+  {
+    auto* selfTest =
+      new pqVesselTouchPanelSelfTest(this, qEnvironmentVariable("VESSELTOUCH_GUI_SELFTEST"));
+    selfTest->start();
+  }
 }
 
-void pqVesselTouchDockPanel::revealOnce()
+pqVesselTouchDockPanel::~pqVesselTouchDockPanel() = default;
+
+void pqVesselTouchDockPanel::setUpDevices()
 {
-  if (this->Revealed)
+  QList<qVesselTouchDeviceEntry> devices{
+    { "simulated", tr("Simulated handle"), "simulated" },
+    { "pointer", tr("Mouse (pseudo-haptics)"), "pointer" },
+    { "replay", tr("Replay a recording"), "replay" },
+  };
+  // A HID device chosen in an earlier run stays listed under its path.
+  if (pqSettings* settings = pqApplicationCore::instance()->settings())
+  {
+    const QString saved = settings->value("VesselTouch/Device").toString();
+    if (saved.startsWith(QLatin1String("hid:")))
+    {
+      devices.append({ saved, tr("HID %1").arg(saved.mid(4)), "hid" });
+    }
+  }
+  this->Internals->Ui.deviceWidget->setAvailableDevices(devices);
+}
+
+void pqVesselTouchDockPanel::connectWidgets()
+{
+  pqInternals& in = *this->Internals;
+  QObject::connect(in.Ui.forceLawWidget,
+    &qVesselTouchForceLawWidget::forceLawChanged,
+    this,
+    &pqVesselTouchDockPanel::onLawGainEdited);
+  QObject::connect(in.Ui.forceLawWidget,
+    &qVesselTouchForceLawWidget::parametersChanged,
+    this,
+    &pqVesselTouchDockPanel::onLawGainEdited);
+  QObject::connect(in.Ui.zonesWidget,
+    &qVesselTouchForceZonesWidget::gainChanged,
+    this,
+    &pqVesselTouchDockPanel::onZoneGainEdited);
+  QObject::connect(in.Ui.zonesWidget,
+    &qVesselTouchForceZonesWidget::thresholdsChanged,
+    this,
+    &pqVesselTouchDockPanel::onWidgetsEdited);
+  QObject::connect(in.Ui.zoomWidget,
+    &qVesselTouchHapticZoomWidget::ratioChanged,
+    this,
+    &pqVesselTouchDockPanel::onWidgetsEdited);
+  QObject::connect(in.Ui.deviceWidget,
+    &qVesselTouchDeviceWidget::deviceSelected,
+    this,
+    &pqVesselTouchDockPanel::onWidgetsEdited);
+
+  QObject::connect(in.Binding,
+    &pqVesselTouchSessionBinding::sessionProxyChanged,
+    this,
+    &pqVesselTouchDockPanel::onSessionProxyChanged);
+  QObject::connect(in.Binding,
+    &pqVesselTouchSessionBinding::propertiesModified,
+    this,
+    &pqVesselTouchDockPanel::pullFromSession);
+
+  QObject::connect(
+    in.Ui.startButton, &QPushButton::clicked, this, &pqVesselTouchDockPanel::startSession);
+  QObject::connect(
+    in.Ui.stopButton, &QPushButton::clicked, this, &pqVesselTouchDockPanel::stopSession);
+  QObject::connect(in.Centerlines,
+    &pqVesselTouchCenterlineWorkflow::message,
+    this,
+    &pqVesselTouchDockPanel::showError);
+  QObject::connect(in.Centerlines,
+    &pqVesselTouchCenterlineWorkflow::centerlineReady,
+    this,
+    [this](pqPipelineSource* centerline, int paths)
+    {
+      this->Internals->Binding->setCenterline(centerline->getProxy(), 0);
+      this->showError(QString());
+      this->Internals->Ui.sessionStateLabel->setText(tr("Centerlines: %1 paths").arg(paths));
+    });
+}
+
+// --- accessors ----------------------------------------------------------------------------
+pqVesselTouchCenterlineWorkflow* pqVesselTouchDockPanel::centerlineWorkflow() const
+{
+  return this->Internals->Centerlines;
+}
+qVesselTouchForceLawWidget* pqVesselTouchDockPanel::forceLawWidget() const
+{
+  return this->Internals->Ui.forceLawWidget;
+}
+qVesselTouchHapticZoomWidget* pqVesselTouchDockPanel::zoomWidget() const
+{
+  return this->Internals->Ui.zoomWidget;
+}
+qVesselTouchForceZonesWidget* pqVesselTouchDockPanel::zonesWidget() const
+{
+  return this->Internals->Ui.zonesWidget;
+}
+qVesselTouchDeviceWidget* pqVesselTouchDockPanel::deviceWidget() const
+{
+  return this->Internals->Ui.deviceWidget;
+}
+qVesselTouchLoopStatsWidget* pqVesselTouchDockPanel::loopStatsWidget() const
+{
+  return this->Internals->Ui.loopStatsWidget;
+}
+pqVesselTouchSessionBinding* pqVesselTouchDockPanel::sessionBinding() const
+{
+  return this->Internals->Binding;
+}
+QString pqVesselTouchDockPanel::errorText() const
+{
+  return this->Internals->Ui.errorLabel->text();
+}
+
+// --- session ------------------------------------------------------------------------------
+void pqVesselTouchDockPanel::onSessionProxyChanged(vtkSMProxy* session)
+{
+  pqInternals& in = *this->Internals;
+  if (session)
+  {
+    // A fresh session (vesseltouch.logic(), or ours) takes the saved settings; one with values of
+    // its own (a state file, Python) is shown as it is.
+    if (pqVesselTouchPanelValues::proxyHasDefaults(session))
+    {
+      in.writeSession();
+    }
+    else
+    {
+      this->pullFromSession();
+    }
+    in.StatusTimer.start();
+  }
+  else
+  {
+    in.StatusTimer.stop();
+  }
+  this->updateSessionStatus();
+  Q_EMIT this->sessionProxyChanged(session);
+}
+
+void pqVesselTouchDockPanel::pullFromSession()
+{
+  pqInternals& in = *this->Internals;
+  vtkSMProxy* session = in.Binding->proxy();
+  if (!session)
   {
     return;
   }
-  if (this->Source)
+  pqVesselTouchPanelValues values = in.fromWidgets();
+  const double zoneGain_N = values.readFromProxy(session);
+  in.toWidgets(values, zoneGain_N);
+  in.saveSettings();
+}
+
+void pqVesselTouchDockPanel::onWidgetsEdited()
+{
+  pqInternals& in = *this->Internals;
+  if (in.Syncing)
   {
-    this->Revealed = true;
+    return;
+  }
+  in.saveSettings();
+  in.writeSession();
+}
+
+void pqVesselTouchDockPanel::onLawGainEdited()
+{
+  pqInternals& in = *this->Internals;
+  if (!in.Syncing)
+  {
+    // The zones plot shows the current law's k.
+    const QSignalBlocker blocker(in.Ui.zonesWidget);
+    in.Ui.zonesWidget->setGain_N(in.fromWidgets().activeGain_N(in.Ui.zonesWidget->gain_N()));
+  }
+  this->onWidgetsEdited();
+}
+
+void pqVesselTouchDockPanel::onZoneGainEdited()
+{
+  pqInternals& in = *this->Internals;
+  if (!in.Syncing)
+  {
+    pqVesselTouchPanelValues values = in.fromWidgets();
+    values.setActiveGain_N(in.Ui.zonesWidget->gain_N());
+    const QSignalBlocker blocker(in.Ui.forceLawWidget);
+    in.Ui.forceLawWidget->setParameters(values.law);
+  }
+  this->onWidgetsEdited();
+}
+
+bool pqVesselTouchDockPanel::useDefaultCenterline()
+{
+  pqInternals& in = *this->Internals;
+  vtkSMProxy* session = in.Binding->ensureSession();
+  if (!session)
+  {
+    return false;
+  }
+  if (vtkSMPropertyHelper(session, "Input", /*quiet=*/true).GetAsProxy())
+  {
+    return true;
+  }
+  if (pqPipelineSource* centerline = in.Centerlines->centerline())
+  {
+    in.Binding->setCenterline(centerline->getProxy(), 0);
+    return true;
+  }
+  pqPipelineSource* volume = in.Centerlines->currentVolume();
+  if (volume && QLatin1String(volume->getProxy()->GetXMLName()) == QLatin1String("VesselPhantom"))
+  {
+    in.Binding->setCenterline(volume->getProxy(), 1); // the phantom's analytic centerline
+    return true;
+  }
+  return false;
+}
+
+bool pqVesselTouchDockPanel::startSession()
+{
+  pqInternals& in = *this->Internals;
+  if (!in.Binding->ensureSession())
+  {
+    this->showError(tr("Start: no server connection."));
+    return false;
+  }
+  if (!this->useDefaultCenterline())
+  {
+    this->showError(tr("Start: extract the centerlines first (Pick seed, then Extract)."));
+    return false;
+  }
+  in.writeSession();
+  in.Binding->copyCamera(qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView()));
+  const bool running = in.Binding->start();
+  if (running)
+  {
+    this->showError(QString());
+  }
+  this->updateSessionStatus();
+  return running;
+}
+
+void pqVesselTouchDockPanel::stopSession()
+{
+  this->Internals->Binding->stop();
+  this->updateSessionStatus();
+}
+
+void pqVesselTouchDockPanel::updateSessionStatus()
+{
+  pqInternals& in = *this->Internals;
+  vtkSMProxy* session = in.Binding->proxy();
+  const pqVesselTouchSessionStatus status = pqVesselTouchSessionStatus::read(session);
+  in.Ui.loopStatsWidget->setStats(status.loop);
+  in.Ui.sessionStateLabel->setText(session ? status.summary() : tr("No session"));
+  in.Ui.startButton->setEnabled(!status.running);
+  in.Ui.stopButton->setEnabled(status.running);
+  in.SessionError =
+    status.faultCode != 0 ? tr("Fault: %1").arg(status.faultText) : status.lastError;
+  this->showError(in.PanelError);
+  in.Ui.deviceWidget->setStatusText(status.running ? tr("Open") : tr("Closed"));
+  if (status.running != in.Running)
+  {
+    in.Running = status.running;
+    Q_EMIT this->runningChanged(status.running);
+  }
+}
+
+void pqVesselTouchDockPanel::showError(const QString& message)
+{
+  pqInternals& in = *this->Internals;
+  in.PanelError = message;
+  const QString shown = in.SessionError.isEmpty() ? in.PanelError : in.SessionError;
+  in.Ui.errorLabel->setText(shown);
+  in.Ui.errorLabel->setVisible(!shown.isEmpty());
+}
+
+// --- the active dataset and the GUI report --------------------------------------------------
+void pqVesselTouchDockPanel::revealOnce()
+{
+  pqInternals& in = *this->Internals;
+  if (in.Revealed)
+  {
+    return;
+  }
+  if (in.Source)
+  {
+    in.Revealed = true;
   }
   this->show();
   this->raise();
@@ -69,16 +472,15 @@ void pqVesselTouchDockPanel::showEvent(QShowEvent* event)
   this->writeReportIfRequested();
 }
 
-pqVesselTouchDockPanel::~pqVesselTouchDockPanel() = default;
-
 void pqVesselTouchDockPanel::setActiveSource(pqPipelineSource* source)
 {
-  if (this->Source)
+  pqInternals& in = *this->Internals;
+  if (in.Source)
   {
-    QObject::disconnect(this->Source, nullptr, this, nullptr);
+    QObject::disconnect(in.Source, nullptr, this, nullptr);
   }
-  this->Source = source;
-  if (source && !this->Revealed)
+  in.Source = source;
+  if (source && !in.Revealed)
   {
     QTimer::singleShot(0, this, &pqVesselTouchDockPanel::revealOnce);
   }
@@ -96,61 +498,44 @@ void pqVesselTouchDockPanel::setActiveSource(pqPipelineSource* source)
 
 void pqVesselTouchDockPanel::updateDatasetInformation()
 {
-  if (!this->Source)
+  pqInternals& in = *this->Internals;
+  qVesselTouchInfoWidget* info = in.Ui.infoWidget;
+  if (!in.Source)
   {
-    this->Info->setDatasetName(QString());
-    this->Info->setDatasetSummary(QString());
+    info->setDatasetName(QString());
+    info->setDatasetSummary(QString());
     this->writeReportIfRequested();
     return;
   }
-  this->Info->setDatasetName(this->Source->getSMName());
-  QString summary;
-  vtkPVDataInformation* info = this->Source->getOutputPort(0)->getDataInformation();
-  if (info && info->GetDataSetType() != -1)
-  {
-    summary = QString::fromLatin1(info->GetPrettyDataTypeString());
-    if (info->GetDataSetType() == VTK_IMAGE_DATA)
-    {
-      const int* e = info->GetExtent();
-      summary +=
-        tr(", %1 x %2 x %3 voxels").arg(e[1] - e[0] + 1).arg(e[3] - e[2] + 1).arg(e[5] - e[4] + 1);
-    }
-    else
-    {
-      summary += tr(", %1 points").arg(info->GetNumberOfPoints());
-    }
-    vtkPVArrayInformation* scalars =
-      info->GetPointDataInformation()->GetAttributeInformation(vtkDataSetAttributes::SCALARS);
-    if (scalars && scalars->GetName())
-    {
-      double range[2];
-      scalars->GetComponentRange(0, range);
-      summary += tr(", %1 in [%2, %3]").arg(scalars->GetName()).arg(range[0]).arg(range[1]);
-    }
-  }
-  this->Info->setDatasetSummary(summary);
+  info->setDatasetName(in.Source->getSMName());
+  const QString summary = pqVesselTouchDatasetSummary::describe(in.Source);
+  info->setDatasetSummary(summary);
   this->writeReportIfRequested();
 }
 
 void pqVesselTouchDockPanel::writeReportIfRequested() const
 {
+  // When VESSELTOUCH_GUI_REPORT names a file, what the panel shows is written there as JSON, so
+  // GUI tests can check the real widget state of a running ParaView.
   const QString path = qEnvironmentVariable("VESSELTOUCH_GUI_REPORT");
   if (path.isEmpty())
   {
     return;
   }
+  const qVesselTouchInfoWidget* info = this->Internals->Ui.infoWidget;
   QJsonObject versions;
-  for (const QString& component : this->Info->versionComponents())
+  for (const QString& component : info->versionComponents())
   {
-    versions.insert(component, this->Info->version(component));
+    versions.insert(component, info->version(component));
   }
   QJsonObject report;
   report.insert("panel", this->objectName());
   report.insert("title", this->windowTitle());
   report.insert("visible", this->isVisible());
-  report.insert("dataset", this->Info->datasetName());
-  report.insert("summary", this->Info->datasetSummary());
+  report.insert("dataset", info->datasetName());
+  report.insert("summary", info->datasetSummary());
   report.insert("versions", versions);
+  report.insert("session", this->Internals->Binding->proxy() != nullptr);
   QFile file(path);
   if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate))
   {

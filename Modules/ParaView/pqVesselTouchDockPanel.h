@@ -1,13 +1,31 @@
-// The "VesselTouch" dock panel: hosts the VesselTouch widgets and binds them to ParaView's active
-// objects. Later widgets (force law, zoom, zones, device, loop statistics) join it here.
+// The "VesselTouch" dock panel: the clinician's workflow on THE haptic session (the proxy
+// registered as "VesselTouchSession", shared with vesseltouch.logic() in the Python console):
+// choose the volume, pick a seed on the MIP, extract the centerlines, choose the device, start and
+// stop, and tune force law, haptic zoom and force zones live. Layout:
+// Resources/UI/pqVesselTouchDockPanel.ui. Widget values persist in the user's settings
+// ("VesselTouch/..."); a loaded state file or Python edits re-sync the widgets from the proxy.
 #ifndef pqVesselTouchDockPanel_h
 #define pqVesselTouchDockPanel_h
 
 #include <QDockWidget>
 #include <QPointer>
+#include <QScopedPointer>
 
 class pqPipelineSource;
-class qVesselTouchInfoWidget;
+class pqView;
+class pqVesselTouchCenterlineWorkflow;
+class pqVesselTouchSessionBinding;
+class qVesselTouchDeviceWidget;
+class qVesselTouchForceLawWidget;
+class qVesselTouchForceZonesWidget;
+class qVesselTouchHapticZoomWidget;
+class qVesselTouchLoopStatsWidget;
+class vtkSMProxy;
+
+namespace Ui
+{
+class pqVesselTouchDockPanel;
+}
 
 class pqVesselTouchDockPanel : public QDockWidget
 {
@@ -15,6 +33,41 @@ class pqVesselTouchDockPanel : public QDockWidget
 public:
   explicit pqVesselTouchDockPanel(QWidget* parent = nullptr);
   ~pqVesselTouchDockPanel() override;
+
+  /// The hosted widgets and the session binding (for the self-test and the view binding).
+  qVesselTouchForceLawWidget* forceLawWidget() const;
+  qVesselTouchHapticZoomWidget* zoomWidget() const;
+  qVesselTouchForceZonesWidget* zonesWidget() const;
+  qVesselTouchDeviceWidget* deviceWidget() const;
+  qVesselTouchLoopStatsWidget* loopStatsWidget() const;
+  pqVesselTouchSessionBinding* sessionBinding() const;
+  /// The text of the red error line ("" when none).
+  QString errorText() const;
+  /// Gives the session (created if needed) a centerline when it has none: the extracted one, else
+  /// port 1 (the analytic centerline) of a chosen VesselPhantom. False when it has none after.
+  bool useDefaultCenterline();
+  /// The "Centerlines" box: volume, seed, extraction.
+  pqVesselTouchCenterlineWorkflow* centerlineWorkflow() const;
+
+  // === Integration point for the view interaction (pqVesselTouchAgentDisplay,
+  // pqVesselTouchPointerInteraction): the lead connects these signals to them (or they follow
+  // the session with a pqVesselTouchSessionBinding of their own). ===
+Q_SIGNALS:
+  /// The shared session proxy appeared, was replaced (state load) or went away (null).
+  void sessionProxyChanged(vtkSMProxy* session);
+  /// The session started (true) or stopped (false, also after a fault or a Stop from Python).
+  void runningChanged(bool running);
+  /// ParaView's active view changed (the agent display and pointer follow it).
+  void activeViewChanged(pqView* view);
+
+public Q_SLOTS:
+  /// Start: gives the session a centerline if it has none, copies the active render view's camera,
+  /// writes the panel's values, starts with the chosen device. False + red error on failure.
+  bool startSession();
+  /// Stop: the session zeroes the force, then closes the device.
+  void stopSession();
+  /// Reads the session's status (loop statistics, state, errors); the ~10 Hz timer calls it.
+  void updateSessionStatus();
 
 protected:
   void showEvent(QShowEvent* event) override;
@@ -24,15 +77,22 @@ private Q_SLOTS:
   void updateDatasetInformation();
   /// Shows the panel; the first time a dataset is active, then never again on its own.
   void revealOnce();
+  void onSessionProxyChanged(vtkSMProxy* session);
+  /// A widget changed: save the settings and write the session's properties.
+  void onWidgetsEdited();
+  void onLawGainEdited();
+  void onZoneGainEdited();
+  /// The proxy changed elsewhere (Python, a state file): show its values.
+  void pullFromSession();
+  void showError(const QString& message);
 
 private:
-  /// When VESSELTOUCH_GUI_REPORT names a file, writes what the panel shows there as JSON, so
-  /// GUI tests can check the real widget state of a running ParaView.
+  void connectWidgets();
+  void setUpDevices();
   void writeReportIfRequested() const;
 
-  qVesselTouchInfoWidget* Info = nullptr;
-  QPointer<pqPipelineSource> Source;
-  bool Revealed = false;
+  class pqInternals;
+  QScopedPointer<pqInternals> Internals;
   Q_DISABLE_COPY(pqVesselTouchDockPanel)
 };
 

@@ -1,6 +1,8 @@
 #include "pqVesselTouchToolBar.h"
 
+#include "pqVesselTouchShowAgentAction.h"
 #include "pqVesselTouchShowMIPReaction.h"
+#include "pqVesselTouchTraceWithMouseAction.h"
 
 #include <QAction>
 
@@ -12,4 +14,8 @@ pqVesselTouchToolBar::pqVesselTouchToolBar(QWidget* parentObject)
   mip->setObjectName("actionVesselTouchShowMIP");
   mip->setToolTip(tr("Show the active image as a maximum-intensity projection"));
   new pqVesselTouchShowMIPReaction(mip);
+  this->ShowAgent = new pqVesselTouchShowAgentAction(this);
+  this->addAction(this->ShowAgent);
+  this->TraceWithMouse = new pqVesselTouchTraceWithMouseAction(this);
+  this->addAction(this->TraceWithMouse);
 }

@@ -1,0 +1,231 @@
+#include "pqVesselTouchSessionBinding.h"
+
+#include "pqActiveObjects.h"
+#include "pqApplicationCore.h"
+#include "pqPipelineSource.h"
+#include "pqRenderView.h"
+#include "pqServer.h"
+#include "pqServerManagerModel.h"
+
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkEventQtSlotConnect.h"
+#include "vtkSMParaViewPipelineController.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMRenderViewProxy.h"
+#include "vtkSMSessionProxyManager.h"
+#include "vtkSMSourceProxy.h"
+#include "vtkSmartPointer.h"
+
+#include <QTimer>
+
+const char* pqVesselTouchSessionBinding::registrationName()
+{
+  return "VesselTouchSession";
+}
+
+pqVesselTouchSessionBinding::pqVesselTouchSessionBinding(QObject* parentObject)
+  : QObject(parentObject)
+{
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  QObject::connect(
+    model, &pqServerManagerModel::sourceAdded, this, &pqVesselTouchSessionBinding::onSourceAdded);
+  QObject::connect(model,
+    &pqServerManagerModel::preSourceRemoved,
+    this,
+    &pqVesselTouchSessionBinding::onSourceRemoved);
+  // A proxy renamed to "VesselTouchSession" (or away from it) changes the binding too.
+  QObject::connect(model,
+    &pqServerManagerModel::nameChanged,
+    this,
+    [this](pqServerManagerModelItem* item)
+    {
+      auto* source = qobject_cast<pqPipelineSource*>(item);
+      if (source == this->Source && !isSession(source))
+      {
+        this->onSourceRemoved(source);
+      }
+      else if (source && !this->Source)
+      {
+        this->onSourceAdded(source);
+      }
+    });
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    if (isSession(source))
+    {
+      this->adopt(source);
+      break;
+    }
+  }
+}
+
+pqVesselTouchSessionBinding::~pqVesselTouchSessionBinding() = default;
+
+bool pqVesselTouchSessionBinding::isSession(pqPipelineSource* source)
+{
+  return source && source->getProxy() && source->getSMName() == QLatin1String(registrationName()) &&
+         QLatin1String(source->getProxy()->GetXMLName()) ==
+           QLatin1String("VesselTouchHapticSession");
+}
+
+vtkSMProxy* pqVesselTouchSessionBinding::proxy() const
+{
+  return this->Source ? this->Source->getProxy() : nullptr;
+}
+
+pqPipelineSource* pqVesselTouchSessionBinding::source() const
+{
+  return this->Source;
+}
+
+void pqVesselTouchSessionBinding::onSourceAdded(pqPipelineSource* source)
+{
+  if (isSession(source) && source != this->Source)
+  {
+    this->adopt(source);
+  }
+}
+
+void pqVesselTouchSessionBinding::onSourceRemoved(pqPipelineSource* source)
+{
+  if (source && source == this->Source)
+  {
+    this->adopt(nullptr);
+  }
+}
+
+void pqVesselTouchSessionBinding::adopt(pqPipelineSource* source)
+{
+  this->Connector->Disconnect();
+  this->Source = source;
+  if (source)
+  {
+    this->Connector->Connect(source->getProxy(),
+      vtkCommand::PropertyModifiedEvent,
+      this,
+      SLOT(onPropertyModified(vtkObject*, unsigned long, void*, void*)));
+  }
+  Q_EMIT this->sessionProxyChanged(this->proxy());
+}
+
+void pqVesselTouchSessionBinding::onPropertyModified(vtkObject*,
+  unsigned long,
+  void*,
+  void* callData)
+{
+  // callData names the property; information properties (the 10 Hz status) are not edits.
+  const QString name = callData ? QString::fromUtf8(static_cast<const char*>(callData)) : QString();
+  if (this->Pushing || this->Pending || name.endsWith(QLatin1String("Info")))
+  {
+    return;
+  }
+  this->Pending = true;
+  QTimer::singleShot(0, this, &pqVesselTouchSessionBinding::emitPropertiesModified);
+}
+
+void pqVesselTouchSessionBinding::emitPropertiesModified()
+{
+  this->Pending = false;
+  Q_EMIT this->propertiesModified();
+}
+
+vtkSMProxy* pqVesselTouchSessionBinding::ensureSession()
+{
+  if (this->Source)
+  {
+    return this->proxy();
+  }
+  pqServer* server = pqActiveObjects::instance().activeServer();
+  if (!server)
+  {
+    return nullptr;
+  }
+  vtkSMSessionProxyManager* pxm = server->proxyManager();
+  vtkSmartPointer<vtkSMProxy> session;
+  session.TakeReference(pxm->NewProxy("filters", "VesselTouchHapticSession"));
+  if (!session)
+  {
+    return nullptr;
+  }
+  vtkNew<vtkSMParaViewPipelineController> controller;
+  controller->PreInitializeProxy(session);
+  session->UpdateVTKObjects();
+  controller->PostInitializeProxy(session);
+  // Registering makes pqServerManagerModel announce it: onSourceAdded() adopts it.
+  controller->RegisterPipelineProxy(session, registrationName());
+  return this->proxy();
+}
+
+void pqVesselTouchSessionBinding::setCenterline(vtkSMProxy* centerline, unsigned int port)
+{
+  vtkSMProxy* session = this->ensureSession();
+  if (!session)
+  {
+    return;
+  }
+  this->writeProperties(
+    [&](vtkSMProxy* proxy) { vtkSMPropertyHelper(proxy, "Input").Set(centerline, port); });
+}
+
+void pqVesselTouchSessionBinding::copyCamera(pqRenderView* view)
+{
+  vtkSMProxy* session = this->proxy();
+  vtkSMRenderViewProxy* viewProxy = view ? view->getRenderViewProxy() : nullptr;
+  vtkCamera* camera = viewProxy ? viewProxy->GetActiveCamera() : nullptr;
+  if (!session || !camera)
+  {
+    return;
+  }
+  this->writeProperties(
+    [&](vtkSMProxy*)
+    {
+      vtkSMPropertyHelper(session, "CameraPosition").Set(camera->GetPosition(), 3);
+      vtkSMPropertyHelper(session, "CameraFocalPoint").Set(camera->GetFocalPoint(), 3);
+      vtkSMPropertyHelper(session, "CameraViewUp").Set(camera->GetViewUp(), 3);
+      vtkSMPropertyHelper(session, "CameraParallelProjection")
+        .Set(camera->GetParallelProjection() ? 1 : 0);
+      vtkSMPropertyHelper(session, "CameraParallelScale").Set(camera->GetParallelScale());
+      vtkSMPropertyHelper(session, "CameraViewAngle").Set(camera->GetViewAngle());
+      int size[2] = { 0, 0 };
+      vtkSMPropertyHelper(viewProxy, "ViewSize").Get(size, 2);
+      if (size[0] > 0 && size[1] > 0)
+      {
+        vtkSMPropertyHelper(session, "ViewportSize").Set(size, 2);
+      }
+    });
+}
+
+bool pqVesselTouchSessionBinding::start()
+{
+  vtkSMProxy* session = this->ensureSession();
+  if (!session)
+  {
+    return false;
+  }
+  session->InvokeCommand("Start");
+  session->UpdatePropertyInformation();
+  return vtkSMPropertyHelper(session, "SessionStatusInfo").GetAsInt(0) != 0;
+}
+
+void pqVesselTouchSessionBinding::stop()
+{
+  if (vtkSMProxy* session = this->proxy())
+  {
+    session->InvokeCommand("Stop");
+  }
+}
+
+void pqVesselTouchSessionBinding::writeProperties(const std::function<void(vtkSMProxy*)>& write)
+{
+  vtkSMProxy* session = this->proxy();
+  if (!session)
+  {
+    return;
+  }
+  this->Pushing = true;
+  write(session);
+  session->UpdateVTKObjects();
+  this->Pushing = false;
+  this->Source->setModifiedState(pqProxy::UNMODIFIED);
+}

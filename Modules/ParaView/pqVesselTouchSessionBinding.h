@@ -1,0 +1,75 @@
+// Binds the panel to THE haptic session: the "VesselTouchHapticSession" proxy registered under
+// the pipeline name "VesselTouchSession" (the one vesseltouch.logic() creates), so the panel and
+// the Python console drive one object. Finds it through pqServerManagerModel, follows it being
+// added/removed (also by a state file), creates it when asked, and reports any change of its
+// properties (from Python, a loaded state, the properties panel) with propertiesModified().
+#ifndef pqVesselTouchSessionBinding_h
+#define pqVesselTouchSessionBinding_h
+
+#include <QObject>
+#include <QPointer>
+
+#include "vtkNew.h"
+
+#include <functional>
+
+class pqPipelineSource;
+class pqRenderView;
+class vtkEventQtSlotConnect;
+class vtkObject;
+class vtkSMProxy;
+
+class pqVesselTouchSessionBinding : public QObject
+{
+  Q_OBJECT
+public:
+  /// The pipeline name of the shared session.
+  static const char* registrationName();
+
+  explicit pqVesselTouchSessionBinding(QObject* parent = nullptr);
+  ~pqVesselTouchSessionBinding() override;
+
+  /// The session proxy, or null when there is none.
+  vtkSMProxy* proxy() const;
+  pqPipelineSource* source() const;
+
+  /// The session, created on the active server (registered as "VesselTouchSession") when there
+  /// is none. Null when there is no server.
+  vtkSMProxy* ensureSession();
+
+  /// Sets the session's centerline input (a VesselCenterline, or port 1 of a VesselPhantom).
+  void setCenterline(vtkSMProxy* centerline, unsigned int port);
+  /// Copies the camera and size of `view` into the session's camera properties.
+  void copyCamera(pqRenderView* view);
+  /// Start/Stop commands. start() returns whether the session runs afterwards.
+  bool start();
+  void stop();
+  /// Calls `write` on the session proxy (when there is one), then UpdateVTKObjects, without
+  /// reporting these changes back as propertiesModified() and without lighting ParaView's Apply
+  /// button: the running session feels them at its next tick.
+  void writeProperties(const std::function<void(vtkSMProxy*)>& write);
+
+Q_SIGNALS:
+  /// The session proxy appeared, was replaced or went away (null).
+  void sessionProxyChanged(vtkSMProxy* session);
+  /// Properties of the session changed from elsewhere (coalesced, once per event loop turn).
+  void propertiesModified();
+
+private Q_SLOTS:
+  void onSourceAdded(pqPipelineSource* source);
+  void onSourceRemoved(pqPipelineSource* source);
+  void onPropertyModified(vtkObject* caller, unsigned long event, void* clientData, void* callData);
+  void emitPropertiesModified();
+
+private:
+  void adopt(pqPipelineSource* source);
+  static bool isSession(pqPipelineSource* source);
+
+  QPointer<pqPipelineSource> Source;
+  vtkNew<vtkEventQtSlotConnect> Connector;
+  bool Pushing = false;
+  bool Pending = false;
+  Q_DISABLE_COPY(pqVesselTouchSessionBinding)
+};
+
+#endif

@@ -1,0 +1,98 @@
+#include "pqVesselTouchSessionStatus.h"
+
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxy.h"
+
+#include <QObject>
+
+#include <cmath>
+
+namespace
+{
+// Indices in AgentStateInfo (vtkVesselTouchHapticSession::GetAgentState).
+constexpr unsigned kAgentState = 2;
+constexpr unsigned kAgentPath = 4;
+constexpr unsigned kAgentPoint = 5;
+constexpr unsigned kAgentPositionX = 8;
+constexpr unsigned kAgentForceX = 17;
+
+QString stringInfo(vtkSMProxy* session, const char* name)
+{
+  const char* text = vtkSMPropertyHelper(session, name).GetAsString();
+  return text ? QString::fromUtf8(text) : QString();
+}
+} // namespace
+
+pqVesselTouchSessionStatus pqVesselTouchSessionStatus::read(vtkSMProxy* session)
+{
+  pqVesselTouchSessionStatus status;
+  if (!session)
+  {
+    return status;
+  }
+  session->UpdatePropertyInformation();
+  vtkSMPropertyHelper sessionInfo(session, "SessionStatusInfo");
+  status.running = sessionInfo.GetAsInt(0) != 0;
+  status.faultCode = sessionInfo.GetAsInt(1);
+  status.skeletonPaths = sessionInfo.GetAsInt(4);
+  status.skeletonPoints = sessionInfo.GetAsInt(5);
+  status.faultText = stringInfo(session, "FaultInfo");
+  status.lastError = stringInfo(session, "LastErrorInfo");
+  status.schedulerNotice = stringInfo(session, "SchedulerNoticeInfo");
+
+  vtkSMPropertyHelper stats(session, "StatisticsInfo");
+  qVesselTouchLoopStats& loop = status.loop;
+  loop.running = status.running;
+  loop.nominalRate_Hz = stats.GetAsDouble(0);
+  loop.achievedRate_Hz = stats.GetAsDouble(1);
+  loop.ticks = static_cast<quint64>(std::max(0.0, stats.GetAsDouble(2)));
+  loop.overruns = static_cast<quint64>(std::max(0.0, stats.GetAsDouble(3)));
+  loop.periodErrorP50_us = stats.GetAsDouble(5);
+  loop.periodErrorP99_us = stats.GetAsDouble(6);
+  loop.periodErrorMax_us = stats.GetAsDouble(8);
+  loop.tickCostP50_us = stats.GetAsDouble(9);
+  loop.tickCostMax_us = stats.GetAsDouble(11);
+  loop.realtimeScheduling =
+    status.schedulerNotice.contains(QLatin1String("SCHED_FIFO")) &&
+    !status.schedulerNotice.contains(QLatin1String("not"), Qt::CaseInsensitive);
+
+  vtkSMPropertyHelper agent(session, "AgentStateInfo");
+  loop.tracing = agent.GetAsDouble(kAgentState) > 0.5;
+  loop.pathId = loop.tracing ? static_cast<int>(agent.GetAsDouble(kAgentPath)) : -1;
+  loop.pointIndex = loop.tracing ? static_cast<int>(agent.GetAsDouble(kAgentPoint)) : -1;
+  for (unsigned i = 0; i < 3; ++i)
+  {
+    status.agentPosition_mm[i] = agent.GetAsDouble(kAgentPositionX + i);
+  }
+  status.agentForce_N[0] = agent.GetAsDouble(kAgentForceX);
+  status.agentForce_N[1] = agent.GetAsDouble(kAgentForceX + 1);
+
+  vtkSMPropertyHelper force(session, "DeviceForceInfo");
+  for (unsigned i = 0; i < 3; ++i)
+  {
+    status.deviceForce_N[i] = force.GetAsDouble(i);
+  }
+  return status;
+}
+
+QString pqVesselTouchSessionStatus::summary() const
+{
+  if (!this->running)
+  {
+    return QObject::tr("Stopped");
+  }
+  if (this->loop.tracing)
+  {
+    return QObject::tr("Running: tracing path %1, point %2")
+      .arg(this->loop.pathId)
+      .arg(this->loop.pointIndex);
+  }
+  return QObject::tr("Running: exploring");
+}
+
+double pqVesselTouchSessionStatus::deviceForceMagnitude_N() const
+{
+  return std::sqrt(this->deviceForce_N[0] * this->deviceForce_N[0] +
+                   this->deviceForce_N[1] * this->deviceForce_N[1] +
+                   this->deviceForce_N[2] * this->deviceForce_N[2]);
+}
