@@ -23,9 +23,14 @@ paraview_plugin_build(
   INSTALL_HEADERS OFF
   ADD_INSTALL_RPATHS ON)
 
-# The extension download also carries an install note and, for reading, the Python and XML
-# sources that are embedded into the plugin.
+# The extension download also carries an install note, the README (its scripting example is what
+# the package test runs) and, for reading, the Python, XML and Qt Designer (.ui) sources that are
+# embedded into the plugin. The device presets (share/VesselTouch/Presets) are installed by
+# HapticDevice/CMakeLists.txt.
 install(FILES "${PROJECT_SOURCE_DIR}/Docs/INSTALL-EXTENSION.md" DESTINATION . RENAME INSTALL.md)
+install(FILES "${PROJECT_SOURCE_DIR}/README.md" DESTINATION .)
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/Resources/UI/"
+  DESTINATION "${CMAKE_INSTALL_DATADIR}/VesselTouch/UI" FILES_MATCHING PATTERN "*.ui")
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/Modules/ParaView/vesseltouch"
   DESTINATION "${CMAKE_INSTALL_DATADIR}/VesselTouch/python" FILES_MATCHING PATTERN "*.py")
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/Modules/ParaView/ServerManager/"

@@ -5,15 +5,18 @@ Load the plugin first (``LoadPlugin(path, ns=globals())`` or the Plugin Manager)
     import vesseltouch
     phantom = VesselPhantom(Shape='Helix')
     vesseltouch.ShowAsMIP(phantom)
+    centerline = vesseltouch.ExtractCenterlines(phantom)     # VesselCenterline
+    session = vesseltouch.logic().Bind(centerline)           # the session the panel shows
 """
 
 from .mip import ShowAsMIP
 from .info import version, build_info
 from .orientation import ShowPatientOrientation, HidePatientOrientation
 from .scene import OpenDefaultScene, DEFAULT_PHANTOM
-from .session import HapticSession, logic
+from .session import HapticSession, logic, SESSION_NAME
+from .centerlines import ExtractCenterlines
 from .agent_view import AgentOverlay
 
 __all__ = ["ShowAsMIP", "OpenDefaultScene", "DEFAULT_PHANTOM", "ShowPatientOrientation",
            "HidePatientOrientation", "version", "build_info", "AgentOverlay", "HapticSession",
-           "logic"]
+           "logic", "SESSION_NAME", "ExtractCenterlines"]

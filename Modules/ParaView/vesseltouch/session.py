@@ -19,8 +19,10 @@ first, then::
     log = s.GetLog()                                # dict of NumPy arrays
     print(log["time"].shape, log["force"].max(), s.GetAgentState()["state"])
 
-``vesseltouch.logic()`` returns one module-level session so that the GUI panel and the console
-drive the same object (like ``slicer.modules.<name>.logic()``).
+``vesseltouch.logic()`` returns the session the GUI panel shows (like
+``slicer.modules.<name>.logic()``): the proxy registered as "VesselTouchSession", adopted if the
+panel (C++) or a script created it, created and registered otherwise, replaced if deleted.
+``vesseltouch.ExtractCenterlines(volume)`` gives it a centerline from the voxels.
 
 Units: millimetres, newtons, seconds, pixels (screen origin at the bottom-left corner).
 Errors (no centerline, an unusable camera, a device that does not open) raise ``RuntimeError``
@@ -31,7 +33,7 @@ import math
 
 from paraview import servermanager, simple
 
-__all__ = ["HapticSession", "logic", "FORCE_LAWS", "DEVICES"]
+__all__ = ["HapticSession", "logic", "SESSION_NAME", "FORCE_LAWS", "DEVICES"]
 
 #: Force law names accepted by :meth:`HapticSession.SetForceLaw` -> the ``ForceLaw`` value.
 FORCE_LAWS = {"ldgf": 0, "changeofheight": 1, "coh": 1, "lateralgradient": 2, "lateral": 2,
@@ -49,6 +51,17 @@ _LOG_COLUMNS = {"Time": "time", "Hand": "hand", "Cursor": "cursor", "State": "st
 
 def _key(name):
     return "".join(c for c in str(name).lower() if c.isalnum())
+
+
+def _normalized(v):
+    n = math.sqrt(sum(c * c for c in v))
+    if n == 0.0 or not math.isfinite(n):
+        raise RuntimeError("the session's camera is degenerate")
+    return [c / n for c in v]
+
+
+def _cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 
 
 def _centerline_port(centerline):
@@ -117,6 +130,39 @@ class HapticSession(object):
         """Uses this centerline (VesselCenterline, VesselPhantom or an output port)."""
         self._set(Input=_centerline_port(centerline))
 
+    def Bind(self, centerline, view=None):
+        """SetCenterline(), then the camera of ``view`` (SetCameraFromView) or, without a view,
+        ResetCamera(), and reads the centerline into the session. Returns self."""
+        self.SetCenterline(centerline)
+        if view is not None:
+            self.SetCameraFromView(view)
+        else:
+            self.ResetCamera()
+        self.proxy.UpdatePipeline()  # the session reads the centerline: ready to Start()
+        return self
+
+    def FollowView(self, view=None):
+        """Copies the camera of ``view`` (default: the active view) now and after every change of
+        it (a vtkCamera observer), so the haptic scene matches what is shown. FollowView(None)
+        after FollowView(view) keeps following the active view; UnfollowView() stops."""
+        view = view or simple.GetActiveView()
+        if view is None:
+            raise RuntimeError("FollowView: no render view")
+        self.UnfollowView()
+        camera = view.GetActiveCamera()
+        state = {"last": None}
+
+        def follow(*_):
+            current = (tuple(view.CameraPosition), tuple(view.CameraFocalPoint),
+                       tuple(view.CameraViewUp), view.CameraParallelScale,
+                       int(view.CameraParallelProjection), tuple(view.ViewSize))
+            if current != state["last"]:
+                state["last"] = current
+                self.SetCameraFromView(view)
+
+        self._follow = (camera, camera.AddObserver("ModifiedEvent", follow))
+        follow()
+
     def ResetCamera(self, direction=(0.0, 0.0, -1.0), view_up=(0.0, 1.0, 0.0), size=None):
         """An orthographic camera looking at the centerline's centre along ``direction`` (the
         direction of projection), fitting the whole centerline. ``size``: (width, height) px."""
@@ -162,6 +208,8 @@ class HapticSession(object):
         view = view or simple.GetActiveView()
         if view is None:
             raise RuntimeError("SetCameraFromView: no render view")
+        if hasattr(view.SMProxy, "SynchronizeCameraProperties"):
+            view.SMProxy.SynchronizeCameraProperties()  # the vtkCamera may have moved since
         self.SetCamera(position=view.CameraPosition, focal_point=view.CameraFocalPoint,
                        view_up=view.CameraViewUp, parallel=bool(view.CameraParallelProjection),
                        parallel_scale=view.CameraParallelScale, view_angle=view.CameraViewAngle,
@@ -351,13 +399,116 @@ class HapticSession(object):
         """The last error of the session ("" when none)."""
         return self._info("LastErrorInfo") or ""
 
+    def UnfollowView(self):
+        """Stops FollowView()."""
+        follow = getattr(self, "_follow", None)
+        if follow is not None:
+            follow[0].RemoveObserver(follow[1])
+        self._follow = None
+
+    def GetCameraFrame(self):
+        """The session's camera as (position, right, up, forward) unit vectors in world mm:
+        ``right``/``up`` are the screen (= device) x/y axes, ``forward`` the viewing direction."""
+        p = self.proxy
+        if p.GetProperty("UseExplicitMatrices").GetData():
+            m = list(p.GetProperty("ViewMatrix").GetData())  # row-major world -> eye
+            right, up, back = m[0:3], m[4:7], m[8:11]
+            rotation_t = [[m[4 * c + r] for c in range(3)] for r in range(3)]
+            t = [m[3], m[7], m[11]]
+            position = [-sum(rotation_t[r][c] * t[c] for c in range(3)) for r in range(3)]
+            return position, _normalized(right), _normalized(up), _normalized([-v for v in back])
+        position = list(p.GetProperty("CameraPosition").GetData())
+        focal = list(p.GetProperty("CameraFocalPoint").GetData())
+        forward = _normalized([f - q for f, q in zip(focal, position)])
+        right = _normalized(_cross(forward, list(p.GetProperty("CameraViewUp").GetData())))
+        return position, right, _cross(right, forward), forward
+
+    def GetTraceMeasures(self, log=None, window_s=0.01):
+        """What a person feels along a trace, from a log (default: GetLog()) and the session's
+        camera: a dict of NumPy arrays ``time`` (s), ``tracing`` (bool), ``force_magnitude`` (N),
+        ``force_along_travel`` (N, the force projected on the agent's on-screen direction of
+        travel over ``window_s``: negative pushes back, positive pulls on; 0 where the agent
+        does not move) and ``depth_mm`` (the agent's distance along the viewing direction:
+        larger is farther from the viewer)."""
+        import numpy
+        log = log if log is not None else self.GetLog()
+        position, right, up, forward = (numpy.asarray(v, dtype=float)
+                                        for v in self.GetCameraFrame())
+        time = numpy.asarray(log["time"], dtype=float)
+        agent = numpy.asarray(log["position"], dtype=float)
+        force = numpy.asarray(log["force"], dtype=float)
+        tracing = numpy.asarray(log["state"]) == 1
+        depth = (agent - position) @ forward
+        screen = numpy.stack([agent @ right, agent @ up], axis=1)
+        step = max(1, int(round(window_s / (time[1] - time[0])))) if len(time) > 1 else 1
+        travel = numpy.zeros_like(screen)
+        if len(time) > step:
+            travel[step:] = screen[step:] - screen[:-step]
+            travel[:step] = travel[step]
+        length = numpy.linalg.norm(travel, axis=1)
+        moving = tracing & (length > 1e-6)
+        along = numpy.zeros(len(time))
+        along[moving] = (force[moving] * travel[moving]).sum(axis=1) / length[moving]
+        return {"time": time, "tracing": tracing, "force_magnitude": numpy.linalg.norm(force, axis=1),
+                "force_along_travel": along, "depth_mm": depth}
+
+    def SaveLog(self, filename, log=None):
+        """Writes a log (default: GetLog()) and its GetTraceMeasures() to ``filename``: a NumPy
+        ``.npz`` (one array per key; vectors keep their columns) or a ``.csv`` (one row per
+        tick, vector columns split as name_0, name_1, ...). Returns the file name."""
+        import numpy
+        log = log if log is not None else self.GetLog()
+        data = {k: numpy.asarray(v) for k, v in log.items() if v is not None}
+        data.update(self.GetTraceMeasures(log))
+        if str(filename).endswith(".csv"):
+            names, columns = [], []
+            for key, value in data.items():
+                value = value.reshape(len(value), -1).astype(float)
+                for c in range(value.shape[1]):
+                    names.append(key if value.shape[1] == 1 else "%s_%d" % (key, c))
+                    columns.append(value[:, c])
+            numpy.savetxt(filename, numpy.stack(columns, axis=1), delimiter=",",
+                          header=",".join(names), comments="", fmt="%.9g")
+        else:
+            numpy.savez(filename, **data)
+        return filename
+
+
+#: Name under which the module-wide session is registered (group "sources"); the VesselTouch
+#: panel binds to the proxy of this name, whichever side (C++ panel or Python) created it.
+SESSION_NAME = "VesselTouchSession"
 
 _LOGIC = None
 
 
+def _registered_session():
+    """The VesselTouchHapticSession proxy registered as SESSION_NAME in the active connection's
+    proxy manager, or None."""
+    if servermanager.ActiveConnection is None:
+        return None
+    proxy = servermanager.ProxyManager().GetProxy("sources", SESSION_NAME)
+    if proxy is None or proxy.GetXMLName() != "VesselTouchHapticSession":
+        return None
+    return proxy
+
+
+def _same(a, b):
+    return a is not None and b is not None and a.SMProxy.__this__ == b.SMProxy.__this__
+
+
 def logic():
-    """The module-level session shared by the GUI panel and the Python console."""
+    """The module-level session shared by the GUI panel and the Python console.
+
+    If a proxy registered as ``"VesselTouchSession"`` exists (the panel may create it from C++,
+    or the main job's start-up script from Python), that proxy is adopted; otherwise a new one is
+    created and registered under that name. A session whose proxy was deleted (``Delete``,
+    ``ResetSession()``, a new connection) is replaced by a new one, so ``logic()`` always returns
+    the session the panel shows."""
     global _LOGIC
-    if _LOGIC is None:
-        _LOGIC = HapticSession(registrationName="VesselTouchSession")
+    registered = _registered_session()
+    if registered is not None:
+        if _LOGIC is None or not _same(_LOGIC.proxy, registered):
+            _LOGIC = HapticSession(proxy=registered)
+        return _LOGIC
+    _LOGIC = HapticSession(registrationName=SESSION_NAME)
     return _LOGIC
