@@ -6,7 +6,8 @@
 #   2. an ASan+UBSan build of the libraries and their unit tests;
 #   3. a TSan build of the threaded code (haptic loop, exchanges, device watchdog) and its tests;
 #   4. the libFuzzer targets of the HID parsers for a bounded time.
-# --quick runs step 1 only. Ends with the overall 'N passed, N failed' line.
+# After step 1, 'Utilities/bench.sh --quick' and its results checker count as one test (bench).
+# --quick runs step 1 and the bench test only. Ends with the overall 'N passed, N failed' line.
 set -uo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 quick=0
@@ -50,6 +51,17 @@ if ! "$root/Utilities/build.sh" "$root/build"; then
   exit 1
 fi
 run_ctest release "$root/build"
+
+# Benchmarks, quick mode: every results.json key present and finite (one test).
+if "$root/Utilities/bench.sh" --quick --build "$root/build" --out "$root/build/bench" &&
+  /usr/bin/python3 "$root/Utilities/bench/check_results.py" "$root/build/bench/results.json"; then
+  passed=$((passed + 1))
+  summary+=("bench: passed")
+else
+  failed=$((failed + 1))
+  status=1
+  summary+=("bench: FAILED")
+fi
 
 if ((!quick)); then
   common=(-DVESSELTOUCH_BUILD_PLUGIN=OFF -DVESSELTOUCH_BUILD_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo)

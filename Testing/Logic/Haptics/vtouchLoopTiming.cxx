@@ -2,7 +2,11 @@
 // on the real-time clock) and prints achieved rate and period-error percentiles.
 //
 //   vesseltouch-loop-timing [--seconds S] [--rates 1000,10000] [--render] [--no-fifo]
-//                           [--spin-us 250]
+//                           [--spin-us 250] [--json out.json]
+//
+// --json also writes, per rate, the statistics and a histogram of the period error (lateness of
+// each wake-up against its absolute deadline, recovered from the session log's tick times) as one
+// JSON object with flat keys: haptic.loop_<rate>hz[_render].<name>.
 //
 // --render adds a busy "render" thread that rebuilds the view model continuously (the GUI work of
 // camera changes) and burns CPU in between, on the same 2 cores.
@@ -10,12 +14,14 @@
 #include "vtouchHapticsTestUtilities.h"
 #include "vtouchSimulatedDevice.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -39,7 +45,87 @@ QSkeleton demoSkeleton()
   return s;
 }
 
-void run(double rate, double seconds, bool render, bool fifo, double spin)
+/// Lateness (us) of each logged tick against its deadline on the grid k * period: the loop wakes
+/// at or after its deadline, and after a tick that ends past the next deadline it skips the missed
+/// ones (the tick's end is taken as its wake time: ticks cost microseconds).
+std::vector<double> periodErrors_us(const std::vector<SessionLogEntry>& log, double rate)
+{
+  std::vector<double> late;
+  const double period = 1.0 / rate;
+  double deadline = 0.0;
+  for (std::size_t k = 0; k < log.size(); ++k)
+  {
+    if (k > 0)
+    {
+      deadline += period;
+      if (log[k - 1].time_s >= deadline)
+      {
+        deadline += (std::floor((log[k - 1].time_s - deadline) / period) + 1.0) * period;
+      }
+    }
+    late.push_back(std::max(0.0, (log[k].time_s - deadline) * 1e6));
+  }
+  return late;
+}
+
+/// Appends `"prefix.key": value` lines for one run to `json`.
+void appendJson(std::string& json,
+  const std::string& prefix,
+  const LoopStatisticsSummary& s,
+  const std::vector<double>& late,
+  long frames)
+{
+  char line[256];
+  const auto add = [&](const char* key, double value)
+  {
+    std::snprintf(line,
+      sizeof line,
+      "%s  \"%s.%s\": %.6g",
+      json.empty() ? "" : ",\n",
+      prefix.c_str(),
+      key,
+      value);
+    json += line;
+  };
+  add("achieved_hz", s.achievedRate_Hz);
+  add("ticks", static_cast<double>(s.ticks));
+  add("p50_period_error_us", s.periodErrorP50_us);
+  add("p99_period_error_us", s.periodErrorP99_us);
+  add("p999_period_error_us", s.periodErrorP999_us);
+  add("max_period_error_us", s.periodErrorMax_us);
+  add("overruns", static_cast<double>(s.overruns));
+  add("tick_median_ns", 1000.0 * s.tickCostP50_us);
+  add("tick_p99_ns", 1000.0 * s.tickCostP99_us);
+  add("render_frames", static_cast<double>(frames));
+  // Histogram: 0.5 us bins up to 50 us, then one bin per decade step of 10 % up to 10 ms.
+  std::vector<double> edges;
+  for (double e = 0.0; e < 50.0; e += 0.5)
+  {
+    edges.push_back(e);
+  }
+  for (double e = 50.0; e <= 1e4; e *= 1.1)
+  {
+    edges.push_back(e);
+  }
+  std::vector<double> counts(edges.size(), 0.0);
+  for (double v : late)
+  {
+    const auto it = std::upper_bound(edges.begin(), edges.end(), v);
+    counts[static_cast<std::size_t>(it - edges.begin()) - 1] += 1.0;
+  }
+  for (const auto* list : { &edges, &counts })
+  {
+    json += ",\n  \"" + prefix + (list == &edges ? ".hist_edges_us" : ".hist_counts") + "\": [";
+    for (std::size_t i = 0; i < list->size(); ++i)
+    {
+      std::snprintf(line, sizeof line, "%s%.4g", i ? ", " : "", (*list)[i]);
+      json += line;
+    }
+    json += "]";
+  }
+}
+
+void run(double rate, double seconds, bool render, bool fifo, double spin, std::string* json)
 {
   HapticSession session;
   session.setSkeleton(demoSkeleton());
@@ -56,6 +142,11 @@ void run(double rate, double seconds, bool render, bool fifo, double spin)
   };
   device->setHandScript(hand);
   session.setDevice(device);
+  if (json)
+  {
+    session.setLogCapacity(static_cast<std::size_t>(rate * (seconds + 1.0)));
+    session.setLogging(true);
+  }
 
   std::atomic<bool> stopRender{ false };
   std::atomic<long> frames{ 0 };
@@ -114,6 +205,12 @@ void run(double rate, double seconds, bool render, bool fifo, double spin)
     frames.load(),
     toString(session.fault()));
   std::printf("  %s\n", session.schedulerNotice().c_str());
+  if (json)
+  {
+    char prefix[64];
+    std::snprintf(prefix, sizeof prefix, "haptic.loop_%.0fhz%s", rate, render ? "_render" : "");
+    appendJson(*json, prefix, s, periodErrors_us(session.log(), rate), frames.load());
+  }
 }
 } // namespace
 
@@ -124,6 +221,7 @@ int main(int argc, char** argv)
   bool render = false;
   bool fifo = true;
   double spin = 250.0;
+  std::string jsonPath;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc)
@@ -152,17 +250,33 @@ int main(int argc, char** argv)
     {
       spin = std::atof(argv[++i]);
     }
+    else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
+    {
+      jsonPath = argv[++i];
+    }
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--seconds S] [--rates 1000,10000] [--render] [--no-fifo] [--spin-us 250]\n",
+        "usage: %s [--seconds S] [--rates 1000,10000] [--render] [--no-fifo] [--spin-us 250] "
+        "[--json out.json]\n",
         argv[0]);
       return 2;
     }
   }
+  std::string json;
   for (double rate : rates)
   {
-    run(rate, seconds, render, fifo, spin);
+    run(rate, seconds, render, fifo, spin, jsonPath.empty() ? nullptr : &json);
+  }
+  if (!jsonPath.empty())
+  {
+    std::ofstream out(jsonPath);
+    out << "{\n" << json << "\n}\n";
+    if (!out)
+    {
+      std::fprintf(stderr, "cannot write %s\n", jsonPath.c_str());
+      return 1;
+    }
   }
   return 0;
 }

@@ -1,0 +1,342 @@
+#!/usr/bin/python3
+"""Draws the benchmark charts from <out>/results.json and <out>/raw/*.json into <out>/*.png.
+
+    /usr/bin/python3 Utilities/bench/charts.py OUT
+
+Charts (each captioned with the machine, the commit and quick/full mode):
+  centerline_accuracy_vs_time.png  mean / p95 distance and coverage against extraction time, voxel
+                                   coding over its parameters and scikit-image, per input
+  centerline_scaling.png           time and peak memory against volume size, log-log, fitted slopes
+  force_error_vs_rate.png          force error against loop rate per force law, helix and spiral
+  force_error_vs_tick_cost.png     force error at 1 kHz against the tick's median cost
+  loop_period_error.png            period-error histograms at 1, 2, 5, 10 kHz, with and without
+                                   a render load
+  stability_maps.png               stable/unstable over coupler k_c, LDGF lambda, force
+                                   interpolation bound against loop rate, defaults marked
+  render_fps.png                   agent frames/s cached vs full re-render over volume sizes
+A chart whose data is missing is skipped with a notice (exit status stays 0: check_results.py is
+the judge of completeness).
+"""
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+LAWS = (("ldgf", "LDGF"), ("change_of_height", "change of height"),
+        ("lateral_gradient", "lateral gradient"), ("constraint_proxy", "constraint proxy"))
+
+
+def load(out, name):
+    path = os.path.join(out, "raw", name + ".json")
+    return json.load(open(path)) if os.path.exists(path) else None
+
+
+def caption(fig, results):
+    mode = "QUICK (small inputs)" if results.get("meta.quick") else "full"
+    fig.text(0.01, 0.005, "%s | commit %s | %s | %s | load avg %.1f" % (
+        results.get("meta.machine", "?"), results.get("meta.commit", "?"), mode,
+        results.get("meta.date", "?"), results.get("meta.load_average_1min", float("nan"))),
+        fontsize=6.5, color="0.35", ha="left", va="bottom")
+
+
+def save(fig, out, name, results):
+    caption(fig, results)
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(os.path.join(out, name), dpi=110)
+    plt.close(fig)
+    print("charts: wrote", name)
+
+
+def chart_centerline_accuracy(out, results):
+    raw = load(out, "centerline")
+    if not raw:
+        return
+    inputs = [("helix", "helix phantom"), ("tree", "tree phantom"), ("aorta", "VMTK aorta (mm)")]
+    measures = [("mean_dist_vox", "mean distance to reference (voxels)"),
+                ("p95_dist_vox", "p95 distance to reference (voxels)"),
+                ("coverage", "coverage (fraction of reference covered)")]
+    fig, axes = plt.subplots(len(measures), len(inputs), figsize=(14, 10.5))
+    for col, (name, title) in enumerate(inputs):
+        sweeps = raw["sweeps"].get(name, {})
+        if name == "aorta":
+            base = raw["aorta"]
+        else:
+            base = raw["scaling"][name][-1]
+        for row, (key, label) in enumerate(measures):
+            ax = axes[row][col]
+            for param, marker, what in (("smoothing_mm", "o-", "VC smoothing window W (mm)"),
+                                        ("min_branch", "s--", "VC MinimumBranchLength (radii)"),
+                                        ("downsample", "^:", "VC DownsampleFactor")):
+                rows = sweeps.get(param, [])
+                if not rows:
+                    continue
+                xs = [r["seconds"] for r in rows]
+                ys = [r[key] for r in rows]
+                ax.plot(xs, ys, marker, label=what, alpha=0.85)
+                for r in rows:
+                    ax.annotate("%g" % r["value"], (r["seconds"], r[key]), fontsize=7,
+                                xytext=(3, 3), textcoords="offset points")
+            if name in raw.get("vesselness", {}):
+                for r in raw["vesselness"][name]:
+                    ax.plot(r["seconds"], r[key], "D", color="tab:green" if r["vesselness"]
+                            else "tab:olive", label="VC noisy input, vesselness %s" % (
+                                "on" if r["vesselness"] else "off"))
+            ax.plot(base["seconds"], base[key], "*", ms=14, color="tab:red",
+                    label="VC defaults, largest size")
+            ax.plot(base["skimage_seconds"], base["skimage_" + key], "X", ms=11,
+                    color="black", label="scikit-image skeletonize_3d, largest size")
+            ax.set_xscale("log")
+            ax.set_xlabel("extraction time (s, log)")
+            ax.set_ylabel(label.replace("voxels", "mm") if name == "aorta" else label)
+            if row == 0:
+                size = "%d^3" % base["size_vox"] if "size_vox" in base else "157x393x34"
+                ax.set_title("%s (sweeps at a smaller size; stars: %s)" % (title, size),
+                             fontsize=9)
+            ax.grid(alpha=0.3, which="both")
+    handles, labels = axes[0][1].get_legend_handles_labels()
+    uniq = dict(zip(labels, handles))
+    fig.legend(uniq.values(), uniq.keys(), loc="upper center", ncol=3, fontsize=8,
+               bbox_to_anchor=(0.5, 1.0))
+    fig.subplots_adjust(top=0.9)
+    caption(fig, results)
+    fig.tight_layout(rect=(0, 0.03, 1, 0.93))
+    fig.savefig(os.path.join(out, "centerline_accuracy_vs_time.png"), dpi=110)
+    plt.close(fig)
+    print("charts: wrote centerline_accuracy_vs_time.png")
+
+
+def chart_centerline_scaling(out, results):
+    raw = load(out, "centerline")
+    if not raw:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5))
+    for shape, color in (("helix", "tab:blue"), ("tree", "tab:orange")):
+        rows = raw["scaling"].get(shape, [])
+        if not rows:
+            continue
+        vox = np.array([r["volume_voxels"] for r in rows], float)
+        for ax, key, skey, unit in ((axes[0], "seconds", "skimage_seconds", "time"),
+                                    (axes[1], "peak_mb", "skimage_peak_mb", "memory")):
+            for who, k, style in (("vc", key, "o-"), ("skimage", skey, "x--")):
+                ys = np.maximum(np.array([r[k] for r in rows], float), 1e-3)
+                slope = results.get("centerline.scaling.%s.%s_%s_slope" % (shape, who, unit),
+                                    float("nan"))
+                ax.loglog(vox, ys, style, color=color,
+                          label="%s %s (slope %.2f)" % (
+                              shape, "voxel coding" if who == "vc" else "scikit-image", slope))
+    axes[0].set_ylabel("extraction time (s)")
+    axes[1].set_ylabel("peak extra resident memory (MB)")
+    for ax in axes:
+        ax.set_xlabel("volume size (voxels)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+    axes[0].set_title("time vs volume size (slope fitted on the larger half)", fontsize=10)
+    axes[1].set_title("peak memory vs volume size", fontsize=10)
+    save(fig, out, "centerline_scaling.png", results)
+
+
+def chart_force(out, results):
+    raw = load(out, "force")
+    if not raw:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5), sharey=True)
+    for ax, scene in zip(axes, ("helix", "spiral")):
+        for law, label in LAWS:
+            pre = "force.%s.%s." % (law, scene)
+            pts = sorted((float(k[len(pre):-len("hz.rel_rms_error")]), v) for k, v in raw.items()
+                         if k.startswith(pre) and k.endswith("hz.rel_rms_error"))
+            if pts:
+                ax.loglog([p[0] for p in pts], [max(p[1], 1e-6) for p in pts], "o-", label=label)
+        ax.axvline(1000, color="0.5", ls=":", lw=1, label="default 1 kHz")
+        ax.set_xlabel("haptic loop rate (Hz)")
+        ax.set_title("%s: error vs a %.0f Hz reference run (hand %.0f mm/s)" % (
+            scene, raw.get("force.reference_rate_hz", 0), raw.get("force.hand_speed_mm_per_s", 0)),
+            fontsize=10)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+    axes[0].set_ylabel("relative RMS force error (1 = 100 %)")
+    save(fig, out, "force_error_vs_rate.png", results)
+
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    for law, label in LAWS:
+        for scene, marker in (("helix", "o"), ("spiral", "s")):
+            cost = raw.get("force.%s.%s.tick_median_ns" % (law, scene))
+            err = raw.get("force.%s.%s.1000hz.rel_rms_error" % (law, scene))
+            if cost is not None and err is not None:
+                ax.loglog(cost, max(err, 1e-6), marker, ms=9, label="%s, %s" % (label, scene))
+    ax.set_xlabel("median session tick cost (ns, offline, 1 kHz)")
+    ax.set_ylabel("relative RMS force error at 1 kHz")
+    ax.set_title("force error vs tick cost", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7, ncol=2)
+    save(fig, out, "force_error_vs_tick_cost.png", results)
+
+
+def chart_loop(out, results):
+    raw = load(out, "haptic")
+    if not raw:
+        return
+    rates = (1000, 2000, 5000, 10000)
+    fig, axes = plt.subplots(1, len(rates), figsize=(16, 4.5), sharey=True)
+    lowest = [1.0]
+    for ax, rate in zip(axes, rates):
+        for suffix, color, label in (("", "tab:blue", "idle"), ("_render", "tab:red",
+                                                                "with render load")):
+            pre = "haptic.loop_%dhz%s." % (rate, suffix)
+            edges = raw.get(pre + "hist_edges_us")
+            counts = raw.get(pre + "hist_counts")
+            if not edges:
+                continue
+            edges = np.array(edges + [edges[-1] * 1.1])
+            counts = np.array(counts, float)
+            frac = counts / max(counts.sum(), 1)
+            floor = 0.3 / max(counts.sum(), 1)
+            lowest[0] = min(lowest[0], floor)
+            ax.stairs(np.where(frac > 0, frac, floor * 1e-3), np.maximum(edges, 0.1), color=color,
+                      label="%s: p99 %.1f us, %.0f Hz" % (
+                          label, raw.get(pre + "p99_period_error_us", float("nan")),
+                          raw.get(pre + "achieved_hz", float("nan"))))
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("period error: wake-up after deadline (us, log)")
+        ax.set_title("%d Hz" % rate, fontsize=10)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+    axes[0].set_ylabel("fraction of ticks (0.5 us bins to 50 us, then 10 % wide)")
+    axes[0].set_ylim(lowest[0], 1.5)
+    save(fig, out, "loop_period_error.png", results)
+
+
+def chart_stability(out, results):
+    raw = load(out, "stability")
+    if not raw:
+        return
+    maps = (("coupler_kc_n_per_m", "constraint proxy coupler stiffness k_c (N/m)"),
+            ("ldgf_lambda_mm", "LDGF lambda at a projection cusp (mm)"),
+            ("interpolation_n_per_s", "force interpolation bound at a cusp (N/s)"))
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4.8))
+    for ax, (name, label) in zip(axes, maps):
+        values = np.array(raw["stability.%s.values" % name])
+        rates = np.array(raw["stability.%s.rates_hz" % name])
+        stable = np.array(raw["stability.%s.stable" % name]).reshape(len(rates), len(values))
+        vv, rr = np.meshgrid(values, rates)
+        ax.scatter(vv[stable > 0], rr[stable > 0], marker="o", color="tab:green", s=40,
+                   label="stable")
+        ax.scatter(vv[stable == 0], rr[stable == 0], marker="x", color="tab:red", s=40,
+                   label="unstable (energy growth)")
+        ax.plot([raw["stability.%s.default" % name]], [1000], "*", color="black", ms=16,
+                label="default (%g at 1 kHz)" % raw["stability.%s.default" % name])
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_yticks(rates)
+        ax.set_yticklabels(["%g" % r for r in rates])
+        ax.minorticks_off()
+        ax.set_xlabel(label)
+        ax.set_ylabel("haptic loop rate (Hz)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7, loc="best")
+    save(fig, out, "stability_maps.png", results)
+
+
+def chart_render(out, results):
+    raw = load(out, "render")
+    if not raw:
+        return
+    sizes = raw.get("render.sizes", [])
+    vox, cached, full = [], [], []
+    for s in sizes:
+        n = [int(p) for p in s.split("x")]
+        vox.append(n[0] * n[1] * n[2])
+        cached.append(raw["render.%s.agent_fps_cached" % s])
+        full.append(raw["render.%s.agent_fps_full" % s])
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    ax.loglog(vox, cached, "o-", label="cached MIP (agent-only frames)")
+    ax.loglog(vox, full, "s--", label="full re-render every frame")
+    for x, s in zip(vox, sizes):
+        ax.annotate(s, (x, cached[vox.index(x)]), fontsize=7, xytext=(3, 3),
+                    textcoords="offset points")
+    ax.axhline(60, color="0.5", ls=":", lw=1, label="60 fps GUI timer")
+    ax.set_xlabel("volume size (voxels)")
+    ax.set_ylabel("agent frame rate (frames/s) at %dx%d px" % (
+        raw.get("render.width_px", 0), raw.get("render.height_px", 0)))
+    ax.set_title("agent frame rate over a MIP (Xvfb, Mesa llvmpipe)", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    save(fig, out, "render_fps.png", results)
+
+
+def summary(out, results):
+    """OUT/summary.md: the headline numbers as Markdown tables (copied by bench.sh --publish)."""
+    r = results.get
+    lines = ["Benchmarks: commit %s, %s, %s mode, %s." % (
+        r("meta.commit"), r("meta.machine"), "quick" if r("meta.quick") else "full", r("meta.date")),
+        "", "| input | VC s | VC peak MB | VC mean / p95 dist | VC coverage | skimage s | "
+        "skimage peak MB | skimage mean / p95 dist | skimage coverage |", "|" + "---|" * 9]
+    for name in ("helix384", "tree384", "aorta"):
+        p = "centerline.%s." % name
+        if r(p + "seconds") is None:
+            continue
+        lines.append("| %s | %.3f | %.1f | %.2f / %.2f | %.3f | %.3f | %.1f | %.2f / %.2f | %.3f |" % (
+            name, r(p + "seconds"), r(p + "peak_mb"), r(p + "mean_dist_vox"),
+            r(p + "p95_dist_vox"), r(p + "coverage"), r(p + "skimage_seconds"),
+            r(p + "skimage_peak_mb"), r(p + "skimage_mean_dist_vox"),
+            r(p + "skimage_p95_dist_vox"), r(p + "skimage_coverage")))
+    lines += ["", "| loop | achieved Hz | p50 / p99 / p99.9 period error us | max us | "
+              "+render achieved Hz | +render p99 / p99.9 us | +render max us |", "|" + "---|" * 7]
+    for rate in (1000, 2000, 5000, 10000):
+        p, q = "haptic.loop_%dhz." % rate, "haptic.loop_%dhz_render." % rate
+        if r(p + "achieved_hz") is None:
+            continue
+        lines.append("| %d Hz | %.1f | %.1f / %.1f / %.1f | %.0f | %.1f | %.1f / %.1f | %.0f |" % (
+            rate, r(p + "achieved_hz"), r(p + "p50_period_error_us"), r(p + "p99_period_error_us"),
+            r(p + "p999_period_error_us"), r(p + "max_period_error_us"), r(q + "achieved_hz", 0),
+            r(q + "p99_period_error_us", 0), r(q + "p999_period_error_us", 0),
+            r(q + "max_period_error_us", 0)))
+    lines += ["", "| force law | helix err 250 Hz / 1 kHz / 10 kHz | spiral err 250 Hz / 1 kHz / "
+              "10 kHz | tick ns (helix, spiral) |", "|" + "---|" * 4]
+    for law, label in LAWS:
+        cells = []
+        for scene in ("helix", "spiral"):
+            cells.append(" / ".join(
+                "%.2g" % r("force.%s.%s.%dhz.rel_rms_error" % (law, scene, rate), float("nan"))
+                for rate in (250, 1000, 10000)))
+        lines.append("| %s | %s | %s | %.0f, %.0f |" % (
+            label, cells[0], cells[1], r("force.%s.helix.tick_median_ns" % law, float("nan")),
+            r("force.%s.spiral.tick_median_ns" % law, float("nan"))))
+    lines += ["", "LDGF against the analytic k tan(beta): worst relative error %.4f (helix), "
+              "%.4f (spiral)." % (r("force.ldgf.helix.max_rel_error", float("nan")),
+                                  r("force.ldgf.spiral.max_rel_error", float("nan"))),
+              "", "Agent frame rate at the largest size: cached %.1f fps, full %.2f fps." % (
+                  r("render.agent_fps_cached", float("nan")), r("render.agent_fps_full",
+                                                                float("nan")))]
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("charts: wrote summary.md")
+
+
+def main():
+    if len(sys.argv) != 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    out = sys.argv[1]
+    try:
+        results = json.load(open(os.path.join(out, "results.json")))
+    except (OSError, ValueError) as e:
+        print("charts: no results: %s" % e, file=sys.stderr)
+        return 1
+    for chart in (chart_centerline_accuracy, chart_centerline_scaling, chart_force, chart_loop,
+                  chart_stability, chart_render, summary):
+        try:
+            chart(out, results)
+        except Exception as e:  # noqa: BLE001  (one broken chart must not hide the others)
+            print("charts: %s skipped: %r" % (chart.__name__, e), file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Checks a bench results.json: every required key is present and its value a finite number
+(meta.commit and meta.machine: non-empty strings). Exit 0 when all are, 1 otherwise.
+
+    /usr/bin/python3 Utilities/bench/check_results.py build/bench/results.json
+"""
+import json
+import math
+import sys
+
+INPUTS = ("helix384", "tree384", "aorta")
+MEASURES = ("seconds", "peak_mb", "mean_dist_vox", "p95_dist_vox", "coverage")
+REQUIRED = (
+    ["centerline.%s.%s" % (i, m) for i in INPUTS for m in MEASURES]
+    + ["centerline.%s.skimage_%s" % (i, m) for i in INPUTS for m in MEASURES]
+    + ["centerline.scaling.%s.%s_%s_slope" % (s, w, q) for s in ("helix", "tree")
+       for w in ("vc", "skimage") for q in ("time", "memory")]
+    + ["centerline.vesselness.%s_noisy.%s.%s" % (s, o, m) for s in ("helix", "tree")
+       for o in ("off", "on") for m in MEASURES]
+    + ["haptic.loop_1000hz.p99_period_error_us", "haptic.loop_10000hz.achieved_hz",
+       "haptic.tick_median_ns", "haptic.loop_1000hz_render.p99_period_error_us",
+       "haptic.loop_10000hz_render.achieved_hz"]
+    + ["force.ldgf.helix.max_rel_error", "force.ldgf.spiral.max_rel_error"]
+    + ["force.%s.%s.%s" % (law, scene, what)
+       for law in ("ldgf", "change_of_height", "lateral_gradient", "constraint_proxy")
+       for scene in ("helix", "spiral")
+       for what in ("1000hz.rel_rms_error", "tick_median_ns")]
+    + ["stability.%s.1000hz.max_stable" % m
+       for m in ("coupler_kc_n_per_m", "ldgf_lambda_mm", "interpolation_n_per_s")]
+    + ["render.agent_fps_cached", "render.agent_fps_full", "meta.quick"]
+)
+STRINGS = ("meta.commit", "meta.machine")
+
+
+def problems(results):
+    found = []
+    for key in REQUIRED:
+        value = results.get(key)
+        if value is None:
+            found.append("missing: " + key)
+        elif isinstance(value, bool) or not isinstance(value, (int, float)) \
+                or not math.isfinite(value):
+            found.append("not a finite number: %s = %r" % (key, value))
+    for key in STRINGS:
+        if not isinstance(results.get(key), str) or not results[key]:
+            found.append("missing or empty string: " + key)
+    return found
+
+
+def main():
+    if len(sys.argv) != 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    try:
+        with open(sys.argv[1]) as f:
+            results = json.load(f)
+    except (OSError, ValueError) as e:
+        print("check_results: cannot read %s: %s" % (sys.argv[1], e), file=sys.stderr)
+        return 1
+    found = problems(results)
+    for line in found:
+        print("check_results:", line, file=sys.stderr)
+    print("check_results: %d required keys, %d problem(s), %d keys in all (quick=%s)"
+          % (len(REQUIRED) + len(STRINGS), len(found), len(results), results.get("meta.quick")))
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
