@@ -2,6 +2,8 @@
 
 #include "vtouchJsonValue.h"
 
+#include <dlfcn.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -178,10 +180,52 @@ bool DeviceCalibration::findPreset(const std::string& directory,
   return false;
 }
 
+std::string DeviceCalibration::findInstalledPresetDirectory(
+  const std::string& startDirectory, int levels)
+{
+  std::error_code ec;
+  std::filesystem::path directory = std::filesystem::absolute(startDirectory, ec);
+  if (ec)
+  {
+    return std::string();
+  }
+  for (int level = 0; level <= levels && !directory.empty(); ++level)
+  {
+    const std::filesystem::path candidate = directory / "share" / "VesselTouch" / "Presets";
+    std::error_code missing; // a folder that does not exist is not an error here
+    if (std::filesystem::is_directory(candidate, missing))
+    {
+      return candidate.string();
+    }
+    if (directory == directory.parent_path())
+    {
+      break;
+    }
+    directory = directory.parent_path();
+  }
+  return std::string();
+}
+
 std::string DeviceCalibration::presetDirectory()
 {
   const char* env = std::getenv("VESSELTOUCH_PRESETS_DIR");
-  return env && *env ? std::string(env) : std::string(VTOUCH_PRESETS_DIR);
+  if (env && *env)
+  {
+    return std::string(env);
+  }
+  // The library or executable this function was linked into (the plugin, a tool, a test).
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&DeviceCalibration::presetDirectory), &info) != 0 &&
+    info.dli_fname && *info.dli_fname)
+  {
+    const std::string installed = DeviceCalibration::findInstalledPresetDirectory(
+      std::filesystem::path(info.dli_fname).parent_path().string());
+    if (!installed.empty())
+    {
+      return installed;
+    }
+  }
+  return std::string(VTOUCH_PRESETS_DIR);
 }
 
 } // namespace vtouch

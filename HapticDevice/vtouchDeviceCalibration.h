@@ -72,8 +72,13 @@ struct DeviceCalibration
     std::uint16_t vendorId,
     std::uint16_t productId,
     DeviceCalibration& calibration);
-  /// The presets folder: $VESSELTOUCH_PRESETS_DIR if set, else the one built in.
+  /// The presets folder: $VESSELTOUCH_PRESETS_DIR if set; else share/VesselTouch/Presets found
+  /// above the binary holding this code (an installed or unpacked package: the plugin sits in
+  /// lib/paraview-5.11/plugins/VesselTouch/); else the source tree's Resources/Presets.
   static std::string presetDirectory();
+  /// The first `share/VesselTouch/Presets` folder in `startDirectory` or up to `levels` parents
+  /// above it; "" when there is none.
+  static std::string findInstalledPresetDirectory(const std::string& startDirectory, int levels = 5);
 };
 
 } // namespace vtouch

@@ -10,6 +10,7 @@
 #include "pqVesselTouchViewBinding.h"
 
 #include "qVesselTouchDeviceWidget.h"
+#include "vtouchHidapiTransport.h"
 #include "qVesselTouchForceLawWidget.h"
 #include "qVesselTouchForceZonesWidget.h"
 #include "qVesselTouchHapticZoomWidget.h"
@@ -35,6 +36,7 @@
 #include "vtkSMProxyLocator.h"
 #include "vtkVesselTouchVersion.h"
 
+#include <QCloseEvent>
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -180,6 +182,15 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
 
 pqVesselTouchDockPanel::~pqVesselTouchDockPanel() = default;
 
+void pqVesselTouchDockPanel::closeEvent(QCloseEvent* event)
+{
+  if (pqVesselTouchSessionStatus::read(this->Internals->Binding->proxy()).running)
+  {
+    this->stopSession();
+  }
+  QDockWidget::closeEvent(event);
+}
+
 void pqVesselTouchDockPanel::setUpDevices()
 {
   QList<qVesselTouchDeviceEntry> devices{
@@ -187,11 +198,35 @@ void pqVesselTouchDockPanel::setUpDevices()
     { "pointer", tr("Mouse (pseudo-haptics)"), "pointer" },
     { "replay", tr("Replay a recording"), "replay" },
   };
-  // A HID device chosen in an earlier run stays listed under its path.
+  // Every joystick-like HID interface present now (force feedback devices present themselves as
+  // joysticks, gamepads or multi-axis controllers, or with the PID usage page).
+  vtouch::HidapiTransport hid;
+  for (const vtouch::HidDeviceInfo& info : hid.enumerate())
+  {
+    const bool joystickLike = info.usagePage == 0x0F || info.usagePage == 0 ||
+      (info.usagePage == 0x01 && (info.usage == 0x04 || info.usage == 0x05 || info.usage == 0x08));
+    if (!joystickLike || info.path.empty())
+    {
+      continue;
+    }
+    const QString name =
+      QString::fromStdString(info.manufacturer + " " + info.product).trimmed();
+    devices.append({ QString("hid:%1").arg(QString::fromStdString(info.path)),
+      tr("HID %1 (%2:%3)")
+        .arg(name.isEmpty() ? QString::fromStdString(info.path) : name)
+        .arg(info.vendorId, 4, 16, QChar('0'))
+        .arg(info.productId, 4, 16, QChar('0')),
+      "hid" });
+  }
+  // A HID device chosen in an earlier run stays listed under its path (it may be unplugged now:
+  // Start then reports that it does not open).
   if (pqSettings* settings = pqApplicationCore::instance()->settings())
   {
     const QString saved = settings->value("VesselTouch/Device").toString();
-    if (saved.startsWith(QLatin1String("hid:")))
+    const bool listed = std::any_of(devices.begin(),
+      devices.end(),
+      [&saved](const qVesselTouchDeviceEntry& entry) { return entry.id == saved; });
+    if (saved.startsWith(QLatin1String("hid:")) && !listed)
     {
       devices.append({ saved, tr("HID %1").arg(saved.mid(4)), "hid" });
     }

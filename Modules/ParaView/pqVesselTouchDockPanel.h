@@ -71,6 +71,8 @@ public Q_SLOTS:
 
 protected:
   void showEvent(QShowEvent* event) override;
+  /// Closing the panel stops a running session (its force goes to zero first).
+  void closeEvent(QCloseEvent* event) override;
 
 private Q_SLOTS:
   void setActiveSource(pqPipelineSource* source);

@@ -344,6 +344,29 @@ void pqVesselTouchPanelSelfTest::saveAndLoadState()
         }
         this->Report.insert("settings", saved);
       }
+      this->closePanelWhileRunning();
+    });
+}
+
+void pqVesselTouchPanelSelfTest::closePanelWhileRunning()
+{
+  if (!this->Panel)
+  {
+    return;
+  }
+  this->Report.insert("restart_returned", this->Panel->startSession());
+  QTimer::singleShot(kSettleTime_ms,
+    this,
+    [this]()
+    {
+      if (!this->Panel)
+      {
+        return;
+      }
+      this->Report.insert("status_before_close", this->status());
+      this->Panel->close(); // the dock's close button
+      this->Report.insert("status_after_close", this->status());
+      this->Panel->show();
       this->finish();
     });
 }

@@ -40,6 +40,7 @@ private Q_SLOTS:
   void stopSession();
   void editFromOutside();
   void saveAndLoadState();
+  void closePanelWhileRunning();
   void finish();
 
 private:

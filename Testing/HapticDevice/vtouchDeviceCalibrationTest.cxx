@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
 namespace
 {
 using vtouch::DeviceCalibration;
@@ -86,6 +91,37 @@ TEST(DeviceCalibration, FindsShippedPresetWhenIdsMatch)
   EXPECT_EQ(c.effectMode, PidEffectMode::Polar);
   EXPECT_FALSE(DeviceCalibration::findPreset(VTOUCH_TEST_PRESETS_DIR, 0x0001, 0x0002, c));
   EXPECT_FALSE(DeviceCalibration::findPreset("/nonexistent", 0x1209, 0xFFB0, c));
+}
+
+TEST(DeviceCalibration, FindsInstalledPresetsAboveThePluginFolder)
+{
+  // An unpacked package: <root>/lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so and
+  // <root>/share/VesselTouch/Presets.
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() /
+    ("vtouch-presets-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+      "-" + std::to_string(reinterpret_cast<std::uintptr_t>(&root) & 0xffff));
+  const fs::path plugin = root / "lib" / "paraview-5.11" / "plugins" / "VesselTouch";
+  const fs::path presets = root / "share" / "VesselTouch" / "Presets";
+  fs::create_directories(plugin);
+  EXPECT_EQ(DeviceCalibration::findInstalledPresetDirectory(plugin.string()), "")
+    << "no presets installed yet";
+  fs::create_directories(presets);
+  EXPECT_EQ(fs::path(DeviceCalibration::findInstalledPresetDirectory(plugin.string())), presets);
+  EXPECT_EQ(fs::path(DeviceCalibration::findInstalledPresetDirectory(root.string())), presets);
+  EXPECT_EQ(DeviceCalibration::findInstalledPresetDirectory(plugin.string(), 2), "")
+    << "the search stops after the given number of parents";
+  EXPECT_EQ(DeviceCalibration::findInstalledPresetDirectory("/nonexistent/a/b"), "");
+  fs::remove_all(root);
+}
+
+TEST(DeviceCalibration, PresetDirectoryHonoursTheEnvironmentFirst)
+{
+  ::setenv("VESSELTOUCH_PRESETS_DIR", "/opt/presets-from-env", 1);
+  EXPECT_EQ(DeviceCalibration::presetDirectory(), "/opt/presets-from-env");
+  ::unsetenv("VESSELTOUCH_PRESETS_DIR");
+  // A build tree has no share/VesselTouch/Presets above the test: the source tree's folder.
+  EXPECT_TRUE(std::filesystem::is_directory(DeviceCalibration::presetDirectory()));
 }
 
 } // namespace

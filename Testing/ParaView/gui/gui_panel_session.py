@@ -120,6 +120,14 @@ check(close(stopped.get("device_force_magnitude_N"), 0.0, 0.0),
       "the device force is zero after Stop (%r)" % stopped.get("device_force_N"))
 check(stopped.get("fault", 1) == 0, "no fault (%r)" % stopped.get("last_error"))
 
+# Closing the panel while a session runs stops it and zeroes the force.
+check(report.get("restart_returned") is True, "the session starts again")
+check(report.get("status_before_close", {}).get("running") is True, "it runs before the close")
+after_close = report.get("status_after_close", {})
+check(after_close.get("running") is False, "closing the panel stops the session")
+check(close(after_close.get("device_force_magnitude_N"), 0.0, 0.0),
+      "the device force is zero after closing the panel (%r)" % after_close.get("device_force_N"))
+
 # An edit of the proxy from outside the panel (as from Python) and a loaded state file re-sync the
 # widgets.
 check(close(report.get("zoom_widget_after_outside_edit"), 3.0),
