@@ -341,6 +341,12 @@ struct VoxelCoder::Impl
   /// Points that other paths attach to are kept.
   void trimClosedEnds(std::size_t firstPath);
 
+  /// A branch trace that reaches the skeleton across a thick junction touches it early, on the
+  /// crotch side: the corner is cut. Extend the branch's own axis (its centres between `far` and
+  /// `near` radii of the touch) to the parent path and attach there, dropping the trace voxels
+  /// within `near` radii of the touch (appendPoint bridges the gap with a straight voxel line).
+  void joinAlongBranchAxis(Trace& t, double junctionRadius);
+
   void traceComponent();
 
   /// Where a branch trace starts: the voxel at the tip cluster's centroid when it is vessel (the

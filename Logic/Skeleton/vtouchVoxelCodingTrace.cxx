@@ -40,6 +40,14 @@ int VoxelCoder::Impl::appendPoint(RawSkeletonPath& path,
   return static_cast<int>(path.voxels.size()) - 1;
 }
 
+namespace
+{
+// Joining a branch across a thick junction (joinAlongBranchAxis), in radii of the junction.
+constexpr double kJoinNear = 1.0;    // trace voxels closer than this to the first touch are dropped
+constexpr double kJoinFar = 2.0;     // the branch axis is taken between kJoinFar and kJoinNear
+constexpr double kJoinOffAxis = 0.5; // the parent point must lie this close to the extended axis
+} // namespace
+
 std::array<double, 3> VoxelCoder::Impl::adjustedCenter(std::uint32_t lin)
 {
   const StageTimer timer{ *this, "center" };
@@ -51,6 +59,8 @@ std::array<double, 3> VoxelCoder::Impl::adjustedCenter(std::uint32_t lin)
   scratch.push_back(lin);
   flags[mask.rank(lin)] |= kRegion;
   double sum[3] = { 0.0, 0.0, 0.0 };
+  bool truncated = false;
+  const double deepBs = std::max(1.5 * minSpacing, 0.25 * static_cast<double>(bs[mask.rank(lin)]));
   for (std::size_t q = 0; q < scratch.size(); ++q)
   {
     const std::array<double, 3> p = centerOf(scratch[q]);
@@ -61,17 +71,30 @@ std::array<double, 3> VoxelCoder::Impl::adjustedCenter(std::uint32_t lin)
     forNeighbours(scratch[q],
       [&](std::uint64_t u, int, std::uint32_t ru)
       {
-        if (!(flags[ru] & kRegion) && (aux[ru] & ~kLabelled) == cluster &&
-            distance2(centerOf(static_cast<std::uint32_t>(u)), c0) <= reach2)
+        if (!(flags[ru] & kRegion) && (aux[ru] & ~kLabelled) == cluster)
         {
-          flags[ru] |= kRegion;
-          scratch.push_back(static_cast<std::uint32_t>(u));
+          if (distance2(centerOf(static_cast<std::uint32_t>(u)), c0) <= reach2)
+          {
+            flags[ru] |= kRegion;
+            scratch.push_back(static_cast<std::uint32_t>(u));
+          }
+          else if (bs[ru] > deepBs)
+          {
+            truncated = true; // the slab goes on into a vessel beyond the ball, not its wall
+          }
         }
       });
   }
   for (std::uint32_t v : scratch)
   {
     flags[mask.rank(v)] &= static_cast<std::uint8_t>(~kRegion);
+  }
+  // Where the slab goes on into a vessel beyond the ball (it spans a junction: the SS front is
+  // tilted there and bulges toward the crotch), its centroid is pulled off the axis toward the
+  // crotch; the traced voxel, on the ridge of the BS code, is not: keep it.
+  if (truncated)
+  {
+    return c0;
   }
   const double n = static_cast<double>(scratch.size());
   return { sum[0] / n, sum[1] / n, sum[2] / n };
@@ -196,8 +219,19 @@ void VoxelCoder::Impl::emitPath(const Trace& t, bool startOnBorder, int tailPath
   for (std::size_t i = t.voxels.size(); i-- > 0;)
   {
     const std::uint32_t lin = t.voxels[i];
+    const int first = static_cast<int>(out.paths[id].voxels.size());
     const int point =
       appendPoint(out.paths[id], voxelArray(lin), adjustedCenter(lin), radiusAt(lin));
+    // The voxels bridging a gap (a junction joined along the branch axis) are skeleton too.
+    for (int k = std::max(first, 1); k < point; ++k)
+    {
+      const auto& v = out.paths[id].voxels[k];
+      const auto bridge = static_cast<std::uint64_t>(v[0] + nx * (v[1] + ny * v[2]));
+      if (mask.test(bridge))
+      {
+        markPoint(id, k, static_cast<std::uint32_t>(bridge));
+      }
+    }
     markPoint(id, point, lin);
   }
   if (tailPath >= 0)
@@ -321,6 +355,7 @@ void VoxelCoder::Impl::traceComponent()
       {
         continue; // a spur
       }
+      joinAlongBranchAxis(t, radius);
     }
     else if (t.voxels.size() < 2)
     {
@@ -333,6 +368,85 @@ void VoxelCoder::Impl::traceComponent()
     closeLoops();
     trimClosedEnds(firstPath);
   }
+}
+
+void VoxelCoder::Impl::joinAlongBranchAxis(Trace& t, double junctionRadius)
+{
+  const RawSkeletonPath& parent = out.paths[t.path];
+  const std::array<double, 3> touch = parent.center_mm[t.point];
+  const double near = kJoinNear * junctionRadius;
+  const double far = kJoinFar * junctionRadius;
+  // t.voxels runs from the tip down to the touch: find the last voxel outside `near` (a) and the
+  // last one outside `far` (b), both on the branch's own axis, away from the junction.
+  std::size_t ia = t.voxels.size(), ib = t.voxels.size();
+  for (std::size_t i = t.voxels.size(); i-- > 0;)
+  {
+    const double d = distance(centerOf(t.voxels[i]), touch);
+    if (ia == t.voxels.size() && d > near)
+    {
+      ia = i;
+    }
+    if (d > far)
+    {
+      ib = i;
+      break;
+    }
+  }
+  if (ia == t.voxels.size() || ib == t.voxels.size() || ib >= ia)
+  {
+    return; // a short branch: keep the first touch
+  }
+  const std::array<double, 3> a = adjustedCenter(t.voxels[ia]);
+  const std::array<double, 3> b = adjustedCenter(t.voxels[ib]);
+  std::array<double, 3> dir{ a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+  const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  if (len <= 0.0)
+  {
+    return;
+  }
+  for (double& x : dir)
+  {
+    x /= len;
+  }
+  // The parent point nearest to the branch axis extended beyond a (the junction centre), among
+  // the parent's points within `far` of the touch along the path (bounded work per branch).
+  int best = -1;
+  double bestOff = std::numeric_limits<double>::infinity();
+  const auto consider = [&](int i)
+  {
+    const std::array<double, 3>& q = parent.center_mm[i];
+    const std::array<double, 3> w{ q[0] - a[0], q[1] - a[1], q[2] - a[2] };
+    const double along = w[0] * dir[0] + w[1] * dir[1] + w[2] * dir[2];
+    if (along <= 0.0)
+    {
+      return;
+    }
+    const double off =
+      std::sqrt(std::max(0.0, w[0] * w[0] + w[1] * w[1] + w[2] * w[2] - along * along));
+    if (off < bestOff)
+    {
+      bestOff = off;
+      best = i;
+    }
+  };
+  consider(t.point);
+  for (int step : { -1, 1 })
+  {
+    for (int i = t.point + step; i >= 0 && i < static_cast<int>(parent.center_mm.size()); i += step)
+    {
+      if (distance(parent.center_mm[i], touch) > far)
+      {
+        break;
+      }
+      consider(i);
+    }
+  }
+  if (best < 0 || bestOff > kJoinOffAxis * junctionRadius)
+  {
+    return;
+  }
+  t.point = best;
+  t.voxels.resize(ia + 1);
 }
 
 std::uint32_t VoxelCoder::Impl::tipStart(const Cluster& c) const

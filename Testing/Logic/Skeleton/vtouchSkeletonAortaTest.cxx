@@ -134,13 +134,13 @@ TEST(VoxelCodingSkeletonFilter, AortaLevelSetMatchesVmtkCenterline)
   EXPECT_EQ(t.bifurcations, 1);
   EXPECT_EQ(t.loops, 0);
   EXPECT_LE(c.mean_mm, 0.5);
-  // Regression guard at the level reached (0.91): the traces cross the merged iliac lumen about
-  // 5 mm below VMTK's bifurcation, 1.3-1.7 mm off VMTK's lines. The issue's 0.95 is the disabled
-  // test below.
-  EXPECT_GE(c.coveredWithin1mm, 0.90);
+  // Regression guard at the level reached (0.94 since branches join along their own axis): the
+  // misses are where VMTK's iliac lines separate ~4 mm above ours and at the three ends (VMTK
+  // stops ~0.7 radius from the end cap, we 1 radius). The issue's 0.95 is the disabled test below.
+  EXPECT_GE(c.coveredWithin1mm, 0.93);
 }
 
-// Issue 3 target not met yet (0.91 reached): see the note above and Docs/CENTERLINES.md.
+// Issue 3 target not met yet (0.94 reached): see the note above and Docs/CENTERLINES.md.
 TEST(VoxelCodingSkeletonFilter, DISABLED_AortaLevelSetCoversVmtkReferenceWithin1mm)
 {
   const std::vector<Vec3> reference = referenceCenterline();

@@ -150,6 +150,31 @@ TEST(VoxelCodingSkeletonFilter, TreeOfDepthThreeHasFiveEndsAndThreeBifurcations)
   EXPECT_EQ(run.analyticTopology.endPoints, 5);
 }
 
+// Thick vessels (radius 13-15 voxels): the back-trace from a tip must follow the branch's medial
+// axis into the junction instead of cutting the corner across it, and the leaf ends must reach the
+// centre of their end caps.
+TEST(VoxelCodingSkeletonFilter, ThickYBifurcationFollowsTheAxisIntoTheJunction)
+{
+  PhantomSpec spec = phantom(PhantomShape::YBifurcation, 176);
+  spec.radiusFraction = 0.08; // 14 voxels
+  const SkeletonRun run = runPhantom(spec);
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.topology.endPoints, 3);
+  EXPECT_EQ(run.topology.bifurcations, 1);
+  EXPECT_EQ(run.topology.loops, 0);
+}
+
+TEST(VoxelCodingSkeletonFilter, ThickTreeFollowsTheAxisIntoTheJunctions)
+{
+  PhantomSpec spec = phantom(PhantomShape::Tree, 192);
+  spec.treeRadiusFractions = { 0.075, 0.06, 0.045 }; // 14.4 / 11.5 / 8.6 voxels
+  const SkeletonRun run = runPhantom(spec);
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.topology.endPoints, 5);
+  EXPECT_EQ(run.topology.bifurcations, 3);
+  EXPECT_EQ(run.topology.loops, 0);
+}
+
 TEST(VoxelCodingSkeletonFilter, LoopNetworkComesOutAsOneLoop)
 {
   const SkeletonRun run = runPhantom(phantom(PhantomShape::LoopNetwork, 96));
