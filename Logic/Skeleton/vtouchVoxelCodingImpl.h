@@ -347,6 +347,12 @@ struct VoxelCoder::Impl
   /// within `near` radii of the touch (appendPoint bridges the gap with a straight voxel line).
   void joinAlongBranchAxis(Trace& t, double junctionRadius);
 
+  /// The mirror of joinAlongBranchAxis for a path that goes on through a junction: beyond the
+  /// junction (toward its tail, the other child) its trace runs on the ridge of the merged lumen,
+  /// inside the child's own axis. Its centres within one junction radius of the junction point are
+  /// put on the straight line from the junction to the first centre beyond that radius.
+  void straightenThroughPaths(std::size_t firstPath);
+
   void traceComponent();
 
   /// Where a branch trace starts: the voxel at the tip cluster's centroid when it is vessel (the

@@ -367,6 +367,58 @@ void VoxelCoder::Impl::traceComponent()
   {
     closeLoops();
     trimClosedEnds(firstPath);
+    straightenThroughPaths(firstPath);
+  }
+}
+
+void VoxelCoder::Impl::straightenThroughPaths(std::size_t firstPath)
+{
+  const std::size_t nJunctions = out.junctions.size();
+  for (std::size_t j = 0; j < nJunctions; ++j)
+  {
+    const RawJunction junction = out.junctions[j];
+    if (junction.childTail || junction.parentPath < static_cast<int>(firstPath))
+    {
+      continue;
+    }
+    RawSkeletonPath& path = out.paths[junction.parentPath];
+    const int n = static_cast<int>(path.center_mm.size());
+    const int at = junction.parentPoint;
+    if (at <= 0 || at >= n - 1)
+    {
+      continue; // the parent ends here: not a through path
+    }
+    const double radius = nearbyRadius(junction.parentPath, at);
+    const std::array<double, 3> c = path.center_mm[at];
+    // The first point beyond one junction radius on the far (tail) side of the junction.
+    int a = at + 1;
+    while (a < n - 1 && distance(path.center_mm[a], c) <= kJoinNear * radius)
+    {
+      ++a;
+    }
+    if (distance(path.center_mm[a], c) <= kJoinNear * radius)
+    {
+      continue; // the path ends within the junction
+    }
+    bool pinned = false;
+    for (const RawJunction& other : out.junctions)
+    {
+      pinned = pinned || (other.parentPath == junction.parentPath && other.parentPoint > at &&
+                           other.parentPoint < a);
+    }
+    if (pinned)
+    {
+      continue;
+    }
+    const std::array<double, 3> e = path.center_mm[a];
+    const double total = distance(e, c);
+    for (int i = at + 1; i < a; ++i)
+    {
+      const double t = std::min(1.0, distance(path.center_mm[i], c) / total);
+      path.center_mm[i] = {
+        c[0] + t * (e[0] - c[0]), c[1] + t * (e[1] - c[1]), c[2] + t * (e[2] - c[2])
+      };
+    }
   }
 }
 
