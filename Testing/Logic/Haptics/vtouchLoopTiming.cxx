@@ -14,6 +14,8 @@
 #include "vtouchHapticsTestUtilities.h"
 #include "vtouchSimulatedDevice.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -68,12 +70,36 @@ std::vector<double> periodErrors_us(const std::vector<SessionLogEntry>& log, dou
   return late;
 }
 
+/// CPU time the hypervisor gave to other guests ("steal", /proc/stat), ms summed over all CPUs;
+/// -1 when unknown. A wake-up delayed by steal is late whatever the loop does, so the timing
+/// report shows it beside the period error.
+double hostSteal_ms()
+{
+  std::ifstream stat("/proc/stat");
+  std::string cpu;
+  unsigned long long v[8] = {};
+  if (!(stat >> cpu) || cpu != "cpu")
+  {
+    return -1.0;
+  }
+  for (unsigned long long& x : v)
+  {
+    if (!(stat >> x))
+    {
+      return -1.0;
+    }
+  }
+  const long ticksPerSecond = sysconf(_SC_CLK_TCK);
+  return ticksPerSecond > 0 ? 1000.0 * static_cast<double>(v[7]) / ticksPerSecond : -1.0;
+}
+
 /// Appends `"prefix.key": value` lines for one run to `json`.
 void appendJson(std::string& json,
   const std::string& prefix,
   const LoopStatisticsSummary& s,
   const std::vector<double>& late,
-  long frames)
+  long frames,
+  double steal_ms)
 {
   char line[256];
   const auto add = [&](const char* key, double value)
@@ -97,6 +123,10 @@ void appendJson(std::string& json,
   add("tick_median_ns", 1000.0 * s.tickCostP50_us);
   add("tick_p99_ns", 1000.0 * s.tickCostP99_us);
   add("render_frames", static_cast<double>(frames));
+  add("host_steal_ms", steal_ms);
+  add("stalls", static_cast<double>(s.stalls));
+  add("stall_time_ms", 1000.0 * s.stallTime_s);
+  add("achieved_hz_outside_stalls", s.achievedRateOutsideStalls_Hz);
   // Histogram: 0.5 us bins up to 50 us, then one bin per decade step of 10 % up to 10 ms.
   std::vector<double> edges;
   for (double e = 0.0; e < 50.0; e += 0.5)
@@ -173,6 +203,7 @@ void run(double rate, double seconds, bool render, bool fifo, double spin, std::
   o.rate_Hz = rate;
   o.realtimePriority = fifo ? 80 : 0;
   o.spinMargin_us = spin;
+  const double stealBefore_ms = hostSteal_ms();
   if (!session.start(o))
   {
     std::fprintf(stderr, "cannot start: %s\n", session.lastError().c_str());
@@ -185,6 +216,9 @@ void run(double rate, double seconds, bool render, bool fifo, double spin, std::
   {
     renderer.join();
   }
+  const double stealAfter_ms = hostSteal_ms();
+  const double steal_ms =
+    stealBefore_ms < 0.0 || stealAfter_ms < 0.0 ? -1.0 : stealAfter_ms - stealBefore_ms;
   const LoopStatisticsSummary s = session.statistics();
   std::printf("rate %6.0f Hz%s: achieved %9.1f Hz over %llu ticks | period error p50 %6.1f us "
               "p99 %7.1f us p99.9 %7.1f us max %8.1f us | overruns %llu (skipped %llu) | tick "
@@ -204,12 +238,18 @@ void run(double rate, double seconds, bool render, bool fifo, double spin, std::
     s.tickCostMax_us,
     frames.load(),
     toString(session.fault()));
+  std::printf("  host: steal %.0f ms (other guests ran on our CPUs), %llu stalls beyond the "
+              "watchdog losing %.1f ms, %.1f Hz outside them\n",
+    steal_ms,
+    static_cast<unsigned long long>(s.stalls),
+    1000.0 * s.stallTime_s,
+    s.achievedRateOutsideStalls_Hz);
   std::printf("  %s\n", session.schedulerNotice().c_str());
   if (json)
   {
     char prefix[64];
     std::snprintf(prefix, sizeof prefix, "haptic.loop_%.0fhz%s", rate, render ? "_render" : "");
-    appendJson(*json, prefix, s, periodErrors_us(session.log(), rate), frames.load());
+    appendJson(*json, prefix, s, periodErrors_us(session.log(), rate), frames.load(), steal_ms);
   }
 }
 } // namespace
