@@ -11,7 +11,8 @@ both against the analytic centerline (phantoms) or VMTK's reference centerline (
 --json writes one flat record per input: case, dims, vessel_voxels, seconds, peak_mb,
 mean_dist_vox, p95_dist_vox, coverage and the skimage_ equivalents (skimage_seconds,
 skimage_peak_mb, skimage_mean_dist_vox, skimage_coverage), plus budget_mb and speedup
-(aorta distances in mm) and downsample. --downsample F sets the filter's DownsampleFactor.
+(aorta distances in mm), downsample (the factor asked for, "auto" = the filter's default) and
+factor (the one used). --downsample F sets the filter's DownsampleFactor (1 = full resolution).
 
 Memory: peak RSS during the skeletonization minus the RSS just before it (the input volume is
 not counted), read from /proc (VmHWM after resetting it through /proc/self/clear_refs).
@@ -88,10 +89,10 @@ def accuracy(points_mm, reference_mm, cover_mm):
 
 
 def run_case(build, name, args, workdir, reference=None, to_reference=None, cover_mm=1.5,
-             voxel_mm=1.0, skip_skimage=False, downsample=1):
+             voxel_mm=1.0, skip_skimage=False, downsample=None):
     exe = os.path.join(build, "Testing", "Logic", "Skeleton", "vtouchSkeletonBenchmark")
     os.makedirs(workdir, exist_ok=True)
-    extra = [str(downsample)] if downsample != 1 else []
+    extra = [str(downsample)] if downsample is not None else []
     vc = json.loads(subprocess.run([exe] + args + [workdir] + extra, check=True,
                                    capture_output=True, text=True).stdout.strip().splitlines()[-1])
     nx, ny, nz = vc["nx"], vc["ny"], vc["nz"]
@@ -100,7 +101,8 @@ def run_case(build, name, args, workdir, reference=None, to_reference=None, cove
     if reference is None:
         reference = np.loadtxt(os.path.join(workdir, "analytic.csv"), delimiter=",")[:, :3]
     row = {"case": name, "dims": f"{nx}x{ny}x{nz}", "vessel_voxels": vc["vessel_voxels"],
-           "downsample": downsample,
+           "downsample": "auto" if downsample is None else downsample,
+           "factor": vc.get("factor", 1),
            "vc_s": vc["seconds"], "vc_mb": vc["extra_rss_bytes"] / 2**20,
            "budget_mb": (nx * ny * nz * 2 / 8 + 24 * vc["vessel_voxels"]) / 2**20}
     mapped = to_reference(vc_pts, world=True) if to_reference else vc_pts
@@ -132,14 +134,15 @@ def aorta_frame(points, world):
 
 
 def table(rows):
-    head = ("| case | volume | vessel voxels | voxel coding s | skimage s | speed-up | "
+    head = ("| case | volume | vessel voxels | factor | voxel coding s | skimage s | speed-up | "
             "VC extra MB | skimage extra MB | budget MB | VC mean dist | VC p95 dist | VC coverage | "
             "skimage mean dist | skimage coverage |")
-    lines = [head, "|" + "---|" * 14]
+    lines = [head, "|" + "---|" * 15]
     for r in rows:
         speed = r["sk_s"] / r["vc_s"] if r["vc_s"] > 0 else float("nan")
         lines.append(
-            f"| {r['case']} | {r['dims']} | {r['vessel_voxels']} | {r['vc_s']:.3f} | "
+            f"| {r['case']} | {r['dims']} | {r['vessel_voxels']} | {r.get('factor', 1)} | "
+            f"{r['vc_s']:.3f} | "
             f"{r['sk_s']:.2f} | {speed:.1f}x | {r['vc_mb']:.1f} | {r['sk_mb']:.1f} | "
             f"{r['budget_mb']:.1f} | {r['vc_mean_vox']:.2f} | {r['vc_p95_vox']:.2f} | "
             f"{r['vc_cover']:.3f} | "
@@ -160,7 +163,8 @@ def flat_record(r):
             "coverage": num(r["vc_cover"]), "skimage_seconds": num(r["sk_s"]),
             "skimage_peak_mb": num(r["sk_mb"]), "skimage_mean_dist_vox": num(r["sk_mean_vox"]),
             "skimage_coverage": num(r["sk_cover"]), "budget_mb": num(r["budget_mb"]),
-            "speedup": num(speed), "downsample": r.get("downsample", 1)}
+            "speedup": num(speed), "downsample": r.get("downsample", "auto"),
+            "factor": r.get("factor", 1)}
 
 
 def main():
@@ -175,10 +179,10 @@ def main():
     parser.add_argument("--no-angiogram", action="store_true", help="skip the 360x330x420 case")
     parser.add_argument("--markdown", help="also write the table to this file")
     parser.add_argument("--json", help="also write per-input flat results (a JSON list) here")
-    parser.add_argument("--downsample", type=int, default=1,
-                        help="the filter's DownsampleFactor for the voxel coding (default 1; "
-                        "scikit-image always runs at full resolution; vessel voxels are then the "
-                        "coarse count)")
+    parser.add_argument("--downsample", type=int, default=None,
+                        help="the filter's DownsampleFactor for the voxel coding (default: the "
+                        "filter's, 0 = automatic; 1 = full resolution). scikit-image always runs "
+                        "at full resolution; vessel voxels are the full-resolution count")
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory(prefix="vtouch-bench-") as tmp:

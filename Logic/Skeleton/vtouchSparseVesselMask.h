@@ -122,6 +122,35 @@ public:
     }
   }
 
+  /// The mask of blocks of `factor`^3 voxels (block maximum: a block is vessel when any of its
+  /// voxels is), finalized. Coarse voxel (I, J, K) covers voxels factor * I .. factor * I + factor
+  /// - 1.
+  SparseVesselMask downsampled(std::int64_t factor) const
+  {
+    const std::array<std::int64_t, 3> coarse{ (this->Dims[0] + factor - 1) / factor,
+      (this->Dims[1] + factor - 1) / factor,
+      (this->Dims[2] + factor - 1) / factor };
+    SparseVesselMask out(coarse);
+    const auto nx = static_cast<std::uint64_t>(this->Dims[0]);
+    const auto ny = static_cast<std::uint64_t>(this->Dims[1]);
+    const auto f = static_cast<std::uint64_t>(factor);
+    std::uint64_t lastRow = ~std::uint64_t{ 0 }, coarseRow = 0;
+    this->forEach(
+      [&](std::uint64_t lin)
+      {
+        const std::uint64_t row = lin / nx; // = j + ny * k
+        if (row != lastRow)
+        {
+          lastRow = row;
+          coarseRow = static_cast<std::uint64_t>(coarse[0]) *
+                      ((row % ny) / f + static_cast<std::uint64_t>(coarse[1]) * ((row / ny) / f));
+        }
+        out.set(coarseRow + (lin - row * nx) / f);
+      });
+    out.finalize();
+    return out;
+  }
+
   const std::array<std::int64_t, 3>& dims() const { return this->Dims; }
   std::uint64_t voxelCount() const { return this->VoxelCount; }
   std::uint64_t vesselCount() const { return this->Count; }

@@ -71,6 +71,14 @@ struct RawSkeleton
   std::vector<std::pair<std::string, double>> stageSeconds;
 };
 
+/// Appends a voxel and its centre to the path, filling the gap from the previous point with a
+/// 26-connected voxel line whose positions and radii interpolate the two points. A voxel equal to
+/// the last one is not appended again. Returns the point index of `voxel`.
+int appendSkeletonPoint(RawSkeletonPath& path,
+  const std::array<std::int64_t, 3>& voxel,
+  const std::array<double, 3>& center_mm,
+  double radius_mm);
+
 /// Runs BS code, SS code, clustering, cluster graph, back-tracing, loop closing and spur pruning.
 /// Time and memory are linear in the number of vessel voxels (bucket queues, no heap, no dense
 /// per-volume arrays besides the caller's 1-bit mask and its rank index).

@@ -275,13 +275,6 @@ struct VoxelCoder::Impl
   // ---- clusters: connected parts of equal SS band, and the cluster graph.
   void buildClusters();
 
-  /// Appends a voxel and its centre to the path, filling the gap from the previous point with a
-  /// 26-connected voxel line whose positions interpolate the two centres. Returns the point index.
-  int appendPoint(RawSkeletonPath& path,
-    const std::array<std::int64_t, 3>& target,
-    const std::array<double, 3>& center,
-    double radius);
-
   std::uint32_t clusterOf(std::uint32_t lin) const { return aux[mask.rank(lin)] & ~kLabelled; }
 
   double radiusAt(std::uint32_t lin) const
@@ -344,7 +337,8 @@ struct VoxelCoder::Impl
   /// A branch trace that reaches the skeleton across a thick junction touches it early, on the
   /// crotch side: the corner is cut. Extend the branch's own axis (its centres between `far` and
   /// `near` radii of the touch) to the parent path and attach there, dropping the trace voxels
-  /// within `near` radii of the touch (appendPoint bridges the gap with a straight voxel line).
+  /// within `near` radii of the touch (appendSkeletonPoint bridges the gap with a straight voxel
+  /// line).
   void joinAlongBranchAxis(Trace& t, double junctionRadius);
 
   /// The mirror of joinAlongBranchAxis for a path that goes on through a junction: beyond the

@@ -89,11 +89,15 @@ public:
   /// 0 = automatic (the largest voxel side). Default 0.
   itkSetMacro(ClusterWidth, double);
   itkGetConstMacro(ClusterWidth, double);
-  /// Skeletonize a coarser mask: each block of F x F x F voxels is vessel when any of its voxels
-  /// is (block maximum), the coarse voxel is F times the input voxel and sits at the block's
-  /// centre, so the output stays in the input's world frame (mm). Time and code memory fall by
-  /// about F^3; thin vessels (radius below ~F voxels) lose accuracy first. Integer >= 1,
-  /// default 1 (no downsampling).
+  /// Code a coarser mask, then refine on the input's: each block of F x F x F voxels is vessel
+  /// when any of its voxels is (block maximum); the voxel coding runs on these blocks (time and
+  /// code memory fall by about F^3) and CoarseSkeletonRefiner re-centres every point on the
+  /// full-resolution cross-section, measures its radius there and rebuilds 26-connected paths of
+  /// input voxels. Thin vessels (radius below ~2 F voxels) lose topology first.
+  /// 0 = automatic (AutomaticDownsampling): full resolution for masks under 2^18 vessel voxels,
+  /// else the largest F <= 4 that keeps 4 coarse voxels in the typical radius, falling back to
+  /// full resolution when a coded branch is thinner than 2 coarse voxels. 1 = full resolution.
+  /// Integer in [0, 64], default 0.
   itkSetMacro(DownsampleFactor, unsigned int);
   itkGetConstMacro(DownsampleFactor, unsigned int);
 
@@ -115,8 +119,13 @@ public:
   itkSetMacro(VesselnessThreshold, double);
   itkGetConstMacro(VesselnessThreshold, double);
 
-  /// Number of vessel voxels of the last run, and the bytes used by the mask and the codes.
+  /// Number of vessel voxels of the last run (input resolution), and the bytes used by the masks
+  /// and the codes.
   itkGetConstMacro(NumberOfVesselVoxels, unsigned long long);
+  /// The factor the last run coded at (DownsampleFactor, or the automatic choice) and the number
+  /// of vessel voxels it coded.
+  itkGetConstMacro(EffectiveDownsampleFactor, unsigned int);
+  itkGetConstMacro(NumberOfCodedVoxels, unsigned long long);
   itkGetConstMacro(CodeMemoryBytes, unsigned long long);
 
 protected:
@@ -133,6 +142,9 @@ private:
   SparseVesselMask BuildMask() const;
   IndexType SeedIndex(const SparseVesselMask& mask) const;
   QSkeleton ToWorld(const RawSkeleton& raw) const;
+  /// Voxel coding of `mask`, whose voxels are blocks of `factor`^3 input voxels; `seed` (input
+  /// voxel index) or nullptr.
+  RawSkeleton Code(const SparseVesselMask& mask, unsigned int factor, const IndexType* seed);
 
   double m_LowerThreshold{ 0.5 };
   double m_UpperThreshold{ std::numeric_limits<double>::max() };
@@ -142,13 +154,15 @@ private:
   double m_MinimumBranchLength{ 2.5 };
   double m_SmoothingWindow{ 0.0 };
   double m_ClusterWidth{ 0.0 };
-  unsigned int m_DownsampleFactor{ 1 };
+  unsigned int m_DownsampleFactor{ 0 };
   bool m_UseVesselness{ false };
   double m_VesselnessSigmaMinimum{ 1.0 };
   double m_VesselnessSigmaMaximum{ 4.0 };
   unsigned int m_VesselnessNumberOfScales{ 4 };
   double m_VesselnessThreshold{ 0.05 };
   unsigned long long m_NumberOfVesselVoxels{ 0 };
+  unsigned long long m_NumberOfCodedVoxels{ 0 };
+  unsigned int m_EffectiveDownsampleFactor{ 1 };
   unsigned long long m_CodeMemoryBytes{ 0 };
   RawSkeleton m_RawSkeleton;
 };

@@ -1,7 +1,10 @@
 #pragma once
 
-#include "vtouchCurveGeometry.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
+
+#include "vtouchAutomaticDownsampling.h"
+#include "vtouchCoarseSkeletonRefiner.h"
+#include "vtouchCurveGeometry.h"
 
 #include <itkHessianToObjectnessMeasureImageFilter.h>
 #include <itkMultiScaleHessianBasedMeasureImageFilter.h>
@@ -97,10 +100,10 @@ void VoxelCodingSkeletonFilter<TInputImage>::VerifyPreconditions() ITKv5_CONST
     itkExceptionMacro("Vesselness needs 0 < SigmaMinimum <= SigmaMaximum (mm), at least one "
                       "scale and a threshold in [0, 1]");
   }
-  if (this->m_DownsampleFactor < 1 || this->m_DownsampleFactor > 64)
+  if (this->m_DownsampleFactor > 64)
   {
-    itkExceptionMacro(
-      "DownsampleFactor must be an integer in [1, 64], got " << this->m_DownsampleFactor);
+    itkExceptionMacro("DownsampleFactor must be 0 (automatic) or an integer in [1, 64], got "
+                      << this->m_DownsampleFactor);
   }
   const InputImageType* input = this->GetInput();
   const auto size = input->GetLargestPossibleRegion().GetSize();
@@ -137,16 +140,11 @@ SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
   {
     itkExceptionMacro("the whole volume must be buffered");
   }
-  // One streaming pass over the volume; with downsampling, a coarse voxel is vessel when any
-  // voxel of its block is (block maximum).
-  const std::int64_t f = this->m_DownsampleFactor;
+  // One streaming pass over the volume.
   const std::array<std::int64_t, 3> fine{ static_cast<std::int64_t>(size[0]),
     static_cast<std::int64_t>(size[1]),
     static_cast<std::int64_t>(size[2]) };
-  const std::array<std::int64_t, 3> dims{
-    (fine[0] + f - 1) / f, (fine[1] + f - 1) / f, (fine[2] + f - 1) / f
-  };
-  SparseVesselMask mask(dims);
+  SparseVesselMask mask(fine);
   const PixelType* voxels = input->GetBufferPointer();
   const std::uint64_t n = static_cast<std::uint64_t>(fine[0] * fine[1] * fine[2]);
 
@@ -180,30 +178,20 @@ SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
     vesselnessCut = static_cast<float>(this->m_VesselnessThreshold) * vmax;
   }
   const float* vness = vesselness ? vesselness->GetBufferPointer() : nullptr;
-  std::uint64_t i = 0;
-  for (std::int64_t z = 0; z < fine[2]; ++z)
+  for (std::uint64_t i = 0; i < n; ++i)
   {
-    for (std::int64_t y = 0; y < fine[1]; ++y)
+    const double value = static_cast<double>(voxels[i]);
+    if constexpr (std::is_floating_point<PixelType>::value)
     {
-      const std::uint64_t coarseRow =
-        static_cast<std::uint64_t>(dims[0] * (y / f + dims[1] * (z / f)));
-      for (std::int64_t x = 0; x < fine[0]; ++x, ++i)
+      if (!std::isfinite(value))
       {
-        const double value = static_cast<double>(voxels[i]);
-        if constexpr (std::is_floating_point<PixelType>::value)
-        {
-          if (!std::isfinite(value))
-          {
-            itkExceptionMacro(
-              "the volume holds a NaN or infinite voxel (linear index " << i << ")");
-          }
-        }
-        if (value >= this->m_LowerThreshold && value <= this->m_UpperThreshold &&
-            (!vness || vness[i] >= vesselnessCut))
-        {
-          mask.set(f == 1 ? i : coarseRow + static_cast<std::uint64_t>(x / f));
-        }
+        itkExceptionMacro("the volume holds a NaN or infinite voxel (linear index " << i << ")");
       }
+    }
+    if (value >= this->m_LowerThreshold && value <= this->m_UpperThreshold &&
+        (!vness || vness[i] >= vesselnessCut))
+    {
+      mask.set(i);
     }
   }
   mask.finalize();
@@ -233,10 +221,6 @@ auto VoxelCodingSkeletonFilter<TInputImage>::SeedIndex(const SparseVesselMask& m
     itkExceptionMacro("SeedPoint " << this->m_SeedPoint << " is outside the volume");
   }
   const auto& d = mask.dims();
-  for (unsigned int a = 0; a < 3; ++a)
-  {
-    index[a] /= static_cast<typename IndexType::IndexValueType>(this->m_DownsampleFactor);
-  }
   // A click may land a voxel off the vessel: accept the nearest vessel voxel of the 3x3x3 block.
   double best = std::numeric_limits<double>::infinity();
   IndexType found = index;
@@ -274,13 +258,9 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
   const auto& origin = input->GetOrigin();
   const auto& dir = input->GetDirection();
   double maxSpacing = 0.0;
-  // A coarse voxel sits at the centre of its block of fine voxels.
-  double blockCentre_mm[3];
-  const double f = static_cast<double>(this->m_DownsampleFactor);
   for (unsigned int a = 0; a < 3; ++a)
   {
-    maxSpacing = std::max(maxSpacing, f * static_cast<double>(input->GetSpacing()[a]));
-    blockCentre_mm[a] = 0.5 * (f - 1.0) * static_cast<double>(input->GetSpacing()[a]);
+    maxSpacing = std::max(maxSpacing, static_cast<double>(input->GetSpacing()[a]));
   }
   QSkeleton s;
   s.paths.resize(raw.paths.size());
@@ -294,9 +274,7 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
     path.points.resize(rp.voxels.size());
     for (std::size_t i = 0; i < rp.voxels.size(); ++i)
     {
-      const std::array<double, 3> c{ rp.center_mm[i][0] + blockCentre_mm[0],
-        rp.center_mm[i][1] + blockCentre_mm[1],
-        rp.center_mm[i][2] + blockCentre_mm[2] };
+      const std::array<double, 3>& c = rp.center_mm[i];
       double w[3];
       for (unsigned int r = 0; r < 3; ++r)
       {
@@ -342,32 +320,30 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
 }
 
 template<typename TInputImage>
-void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
+RawSkeleton VoxelCodingSkeletonFilter<TInputImage>::Code(const SparseVesselMask& mask,
+  unsigned int factor,
+  const IndexType* seed)
 {
-  QSkeletonObject* output = this->GetOutput();
-  output->Get() = QSkeleton{};
-  this->m_RawSkeleton = RawSkeleton{};
-  this->UpdateProgress(0.0F);
-  const SparseVesselMask mask = this->BuildMask();
-  this->m_NumberOfVesselVoxels = mask.vesselCount();
-
+  this->m_NumberOfCodedVoxels = mask.vesselCount();
   VoxelCodingParameters par;
   const auto& spacing = this->GetInput()->GetSpacing();
-  const double f = static_cast<double>(this->m_DownsampleFactor);
+  const double f = static_cast<double>(factor);
   par.spacing_mm = { f * spacing[0], f * spacing[1], f * spacing[2] };
   par.minimumBranchLength = this->m_MinimumBranchLength;
-  par.minimumComponentSize = this->m_MinimumComponentSize;
+  // The component size is counted in input voxels.
+  par.minimumComponentSize =
+    std::max<unsigned long>(1, this->m_MinimumComponentSize / (factor * factor * factor));
   par.clusterWidth_mm = this->m_ClusterWidth;
-  if (this->m_UseSeedPoint)
+  if (seed)
   {
-    const IndexType seed = this->SeedIndex(mask);
+    // The block of a vessel voxel is vessel (block maximum).
     par.hasSeed = true;
-    par.seedIndex = { seed[0], seed[1], seed[2] };
+    par.seedIndex = { (*seed)[0] / factor, (*seed)[1] / factor, (*seed)[2] / factor };
   }
   try
   {
     VoxelCoder coder(mask, par);
-    this->m_RawSkeleton = coder.run(
+    return coder.run(
       [this](double p)
       {
         this->UpdateProgress(static_cast<float>(0.05 + 0.9 * p));
@@ -390,7 +366,52 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
     itkExceptionMacro(
       "not enough memory for the voxel codes of " << mask.vesselCount() << " vessel voxels");
   }
-  this->m_CodeMemoryBytes = mask.memoryBytes() + this->m_RawSkeleton.peakBytes;
+}
+
+template<typename TInputImage>
+void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
+{
+  QSkeletonObject* output = this->GetOutput();
+  output->Get() = QSkeleton{};
+  this->m_RawSkeleton = RawSkeleton{};
+  this->UpdateProgress(0.0F);
+  const SparseVesselMask mask = this->BuildMask();
+  this->m_NumberOfVesselVoxels = mask.vesselCount();
+  IndexType seedIndex;
+  if (this->m_UseSeedPoint)
+  {
+    seedIndex = this->SeedIndex(mask);
+  }
+  const IndexType* seed = this->m_UseSeedPoint ? &seedIndex : nullptr;
+  const bool automatic = this->m_DownsampleFactor == 0;
+  unsigned int factor =
+    automatic ? AutomaticDownsampling::factorFor(mask) : this->m_DownsampleFactor;
+  std::size_t coarseMaskBytes = 0;
+  if (factor > 1)
+  {
+    const SparseVesselMask coarse = mask.downsampled(factor);
+    coarseMaskBytes = coarse.memoryBytes();
+    this->m_RawSkeleton = this->Code(coarse, factor, seed);
+    const auto& spacing = this->GetInput()->GetSpacing();
+    const double coarseVoxel_mm = factor * std::max({ spacing[0], spacing[1], spacing[2] });
+    if (automatic &&
+        !AutomaticDownsampling::resolvesEveryBranch(this->m_RawSkeleton, coarseVoxel_mm))
+    {
+      factor = 1; // a thin branch: code the full resolution after all
+      coarseMaskBytes = 0;
+    }
+    else
+    {
+      CoarseSkeletonRefiner refiner(mask, { spacing[0], spacing[1], spacing[2] }, factor);
+      this->m_RawSkeleton = refiner.refine(this->m_RawSkeleton);
+    }
+  }
+  if (factor == 1)
+  {
+    this->m_RawSkeleton = this->Code(mask, 1, seed);
+  }
+  this->m_EffectiveDownsampleFactor = factor;
+  this->m_CodeMemoryBytes = mask.memoryBytes() + coarseMaskBytes + this->m_RawSkeleton.peakBytes;
   if (this->m_RawSkeleton.paths.empty())
   {
     itkExceptionMacro("no vessel component of at least " << this->m_MinimumComponentSize

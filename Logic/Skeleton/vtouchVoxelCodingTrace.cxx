@@ -4,7 +4,7 @@
 namespace vtouch
 {
 
-int VoxelCoder::Impl::appendPoint(RawSkeletonPath& path,
+int appendSkeletonPoint(RawSkeletonPath& path,
   const std::array<std::int64_t, 3>& target,
   const std::array<double, 3>& center,
   double radius)
@@ -221,7 +221,7 @@ void VoxelCoder::Impl::emitPath(const Trace& t, bool startOnBorder, int tailPath
     const std::uint32_t lin = t.voxels[i];
     const int first = static_cast<int>(out.paths[id].voxels.size());
     const int point =
-      appendPoint(out.paths[id], voxelArray(lin), adjustedCenter(lin), radiusAt(lin));
+      appendSkeletonPoint(out.paths[id], voxelArray(lin), adjustedCenter(lin), radiusAt(lin));
     // The voxels bridging a gap (a junction joined along the branch axis) are skeleton too.
     for (int k = std::max(first, 1); k < point; ++k)
     {
@@ -238,7 +238,7 @@ void VoxelCoder::Impl::emitPath(const Trace& t, bool startOnBorder, int tailPath
   {
     RawSkeletonPath& path = out.paths[id];
     const RawSkeletonPath& parent = out.paths[tailPath];
-    appendPoint(
+    appendSkeletonPoint(
       path, parent.voxels[tailPoint], parent.center_mm[tailPoint], parent.radius_mm[tailPoint]);
     out.junctions.push_back({ id, true, tailPath, tailPoint });
     path.tailJunction = static_cast<int>(out.junctions.size()) - 1;

@@ -107,7 +107,6 @@ vtouch::QSkeleton skeletonize(vtkVesselTouchCenterlineFilter* self,
   filter->SetVesselnessSigmaMaximum(s.sigmaMax);
   filter->SetVesselnessNumberOfScales(static_cast<unsigned int>(std::max(0, s.scales)));
   filter->SetVesselnessThreshold(s.vesselnessThreshold);
-  // Values below 1 reach the ITK filter as 0, which it rejects with a clear message.
   filter->SetDownsampleFactor(static_cast<unsigned int>(std::max(0, s.downsampleFactor)));
   // Progress to VTK; VTK's abort flag to ITK.
   auto progress = itk::CStyleCommand::New();
@@ -252,6 +251,12 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   {
     vtkErrorMacro("The input scalars have " << scalars->GetNumberOfComponents()
                                             << " components; VesselCenterline needs one.");
+    return 1;
+  }
+  if (this->DownsampleFactor < 0)
+  {
+    vtkErrorMacro("DownsampleFactor must be 0 (automatic) or a factor >= 1, got "
+                  << this->DownsampleFactor << ".");
     return 1;
   }
   const Settings s{ this->LowerThreshold,

@@ -46,8 +46,10 @@ public:
   /// Position smoothing half window, mm (0 = automatic, negative = none; default 0).
   vtkSetMacro(SmoothingWindow, double);
   vtkGetMacro(SmoothingWindow, double);
-  /// Skeletonize a mask downsampled by this integer factor per axis (block maximum; coarse voxels
-  /// at their block centres, output still in world mm). Faster by about F^3, coarser. Default 1.
+  /// Code a mask downsampled by this integer factor per axis (block maximum), then re-centre every
+  /// point on the full-resolution mask: faster by about F^3, same output frame and voxel paths.
+  /// 0 = automatic (full resolution for small masks or thin vessels), 1 = full resolution.
+  /// Default 0.
   vtkSetMacro(DownsampleFactor, int);
   vtkGetMacro(DownsampleFactor, int);
 
@@ -85,7 +87,7 @@ private:
   int MinimumComponentSize = 100;
   double MinimumBranchLength = 2.5;
   double SmoothingWindow = 0.0;
-  int DownsampleFactor = 1;
+  int DownsampleFactor = 0;
   bool UseVesselness = false;
   double VesselnessSigmaMinimum = 1.0;
   double VesselnessSigmaMaximum = 4.0;

@@ -7,7 +7,9 @@
 //       on stdout.
 //   vtouchSkeletonBenchmark image <file.mha> <lower> <upper> <outdir> [downsample]
 //       same for an image file (mask.raw, voxelcoding.csv; no analytic centerline).
-//   [downsample]: the filter's DownsampleFactor (default 1); mask.raw stays at full resolution.
+//   [downsample]: the filter's DownsampleFactor (default: the filter's default, 0 = automatic);
+//   mask.raw stays at full resolution. The JSON line reports the factor used ("factor") and the
+//   voxels coded at it ("coded_voxels").
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include "vtouchSkeletonBenchmarkSupport.h"
@@ -28,9 +30,11 @@ namespace
 using vtouch::benchmark::Image;
 using Filter = vtouch::VoxelCodingSkeletonFilter<Image>;
 
+constexpr unsigned int kFilterDefault = ~0U;
+
 unsigned int downsampleArg(const char* text)
 {
-  return static_cast<unsigned int>(std::max(0, std::atoi(text))); // 0 is rejected by the filter
+  return static_cast<unsigned int>(std::max(0, std::atoi(text))); // 0 = automatic
 }
 
 int run(Image* image,
@@ -45,7 +49,10 @@ int run(Image* image,
   filter->SetInput(image);
   filter->SetLowerThreshold(lower);
   filter->SetUpperThreshold(upper);
-  filter->SetDownsampleFactor(downsample);
+  if (downsample != kFilterDefault)
+  {
+    filter->SetDownsampleFactor(downsample);
+  }
   vtouch::benchmark::PeakMemoryProbe memory;
   memory.start();
   const auto t0 = std::chrono::steady_clock::now();
@@ -62,7 +69,7 @@ int run(Image* image,
   const auto size = image->GetLargestPossibleRegion().GetSize();
   std::printf("{\"case\": \"%s\", \"nx\": %lu, \"ny\": %lu, \"nz\": %lu, \"vessel_voxels\": %llu, "
               "\"seconds\": %.4f, \"extra_rss_bytes\": %lld, \"code_bytes\": %llu, \"paths\": %zu, "
-              "\"points\": %zu, \"junctions\": %zu}\n",
+              "\"points\": %zu, \"junctions\": %zu, \"factor\": %u, \"coded_voxels\": %llu}\n",
     name.c_str(),
     size[0],
     size[1],
@@ -73,7 +80,9 @@ int run(Image* image,
     filter->GetCodeMemoryBytes(),
     s.paths.size(),
     s.pointCount(),
-    s.junctions.size());
+    s.junctions.size(),
+    filter->GetEffectiveDownsampleFactor(),
+    filter->GetNumberOfCodedVoxels());
   return 0;
 }
 } // namespace
@@ -101,7 +110,8 @@ int main(int argc, char** argv)
         std::cerr << error << "\n";
         return 1;
       }
-      return run(image, wall, 1e30, outdir, shape, argc == 8 ? downsampleArg(argv[7]) : 1U);
+      return run(
+        image, wall, 1e30, outdir, shape, argc == 8 ? downsampleArg(argv[7]) : kFilterDefault);
     }
     if ((argc == 6 || argc == 7) && std::string(argv[1]) == "image")
     {
@@ -115,7 +125,7 @@ int main(int argc, char** argv)
         std::atof(argv[4]),
         argv[5],
         "image",
-        argc == 7 ? downsampleArg(argv[6]) : 1U);
+        argc == 7 ? downsampleArg(argv[6]) : kFilterDefault);
     }
   }
   catch (const std::exception& e)

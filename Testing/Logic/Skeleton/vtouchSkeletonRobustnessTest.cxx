@@ -143,7 +143,9 @@ TEST(VoxelCodingSkeletonFilter, DownsampleFactorTwoStaysWithinOneVoxelOfFullReso
   const QSkeleton& coarse = filter->GetSkeleton();
   EXPECT_EQ(coarse.validate(), "");
   // Block maximum: about 1/8 of the voxels, plus the half block it adds around the wall.
-  EXPECT_LT(filter->GetNumberOfVesselVoxels() * 4, full.raw.vesselVoxels);
+  EXPECT_LT(filter->GetNumberOfCodedVoxels() * 4, full.raw.vesselVoxels);
+  EXPECT_EQ(filter->GetNumberOfVesselVoxels(), full.raw.vesselVoxels);
+  EXPECT_EQ(filter->GetEffectiveDownsampleFactor(), 2U);
   const test::Topology tf = test::topology(full.skeleton, 15.0);
   const test::Topology tc = test::topology(coarse, 15.0);
   EXPECT_EQ(tc.endPoints, tf.endPoints);
@@ -169,8 +171,13 @@ TEST(VoxelCodingSkeletonFilter, DownsampleFactorTwoStaysWithinOneVoxelOfFullReso
             << " mm\n";
   EXPECT_LE(mean, 0.5);
   EXPECT_LE(p95, 1.0);
-  filter->SetDownsampleFactor(0);
+  filter->SetDownsampleFactor(65);
   EXPECT_THROW(filter->Update(), itk::ExceptionObject);
+  // 0 is automatic: this mask is small, so it is coded at full resolution.
+  filter->SetDownsampleFactor(0);
+  filter->Update();
+  EXPECT_EQ(filter->GetEffectiveDownsampleFactor(), 1U);
+  EXPECT_EQ(filter->GetNumberOfCodedVoxels(), full.raw.vesselVoxels);
 }
 
 TEST(VoxelCodingSkeletonFilter, WorldCoordinatesFollowOriginSpacingAndDirection)

@@ -24,6 +24,9 @@ struct SkeletonRun
   test::Accuracy accuracy;
   test::Topology topology;
   test::Topology analyticTopology;
+  unsigned int factor = 1; // the DownsampleFactor the run coded at
+  unsigned long long codedVoxels = 0;
+  unsigned long long vesselVoxels = 0;
 };
 
 PhantomSpec phantom(PhantomShape shape, int n)
@@ -34,7 +37,9 @@ PhantomSpec phantom(PhantomShape shape, int n)
   return spec;
 }
 
-SkeletonRun runPhantom(const PhantomSpec& spec, double minimumBranchLength = 2.5)
+SkeletonRun runPhantom(const PhantomSpec& spec,
+  double minimumBranchLength = 2.5,
+  unsigned int downsampleFactor = 0)
 {
   PhantomGenerator generator(spec);
   EXPECT_TRUE(generator.ok()) << generator.error();
@@ -43,8 +48,12 @@ SkeletonRun runPhantom(const PhantomSpec& spec, double minimumBranchLength = 2.5
   filter->SetInput(image);
   filter->SetLowerThreshold(test::wallThreshold(spec));
   filter->SetMinimumBranchLength(minimumBranchLength);
+  filter->SetDownsampleFactor(downsampleFactor);
   filter->Update();
   SkeletonRun run;
+  run.factor = filter->GetEffectiveDownsampleFactor();
+  run.codedVoxels = filter->GetNumberOfCodedVoxels();
+  run.vesselVoxels = filter->GetNumberOfVesselVoxels();
   run.skeleton = filter->GetSkeleton();
   run.raw = filter->GetRawSkeleton();
   const double voxel = std::min({ spec.spacing_mm[0], spec.spacing_mm[1], spec.spacing_mm[2] });
@@ -57,7 +66,7 @@ SkeletonRun runPhantom(const PhantomSpec& spec, double minimumBranchLength = 2.5
             << run.accuracy.p95_mm / voxel << " vox, coverage " << run.accuracy.coverage
             << ", radius error " << run.accuracy.radiusError_mm / voxel << " vox; ends "
             << run.topology.endPoints << " bifurcations " << run.topology.bifurcations << " loops "
-            << run.topology.loops << "\n";
+            << run.topology.loops << "; coded at factor " << run.factor << "\n";
   if (const char* dir = std::getenv("VTOUCH_SKELETON_DUMP"))
   {
     std::ofstream f(std::string(dir) + "/" + toString(spec.shape) + ".csv");
@@ -98,13 +107,11 @@ TEST(VoxelCodingSkeletonFilter, StraightTubeGivesOnePathWithTwoEnds)
   EXPECT_EQ(run.topology.loops, 0);
 }
 
-TEST(VoxelCodingSkeletonFilter, HelixMatchesAnalyticCurvatureAndTorsion)
+/// Helix curvature and torsion within 5 % of a / (a^2 + c^2) and c / (a^2 + c^2) away from the
+/// ends.
+void expectHelixCurvatureAndTorsion(const SkeletonRun& run, const PhantomSpec& spec)
 {
-  const PhantomSpec spec = phantom(PhantomShape::Helix, 96);
-  const SkeletonRun run = runPhantom(spec);
-  expectAccurate(run, 1.0);
   ASSERT_EQ(run.skeleton.paths.size(), 1U);
-  EXPECT_EQ(run.topology.endPoints, 2);
   const double n = spec.referenceLength_mm();
   const double a = spec.helixRadiusFraction * n;
   const double c = spec.helixPitchFraction * n / (2.0 * 3.14159265358979323846);
@@ -126,6 +133,56 @@ TEST(VoxelCodingSkeletonFilter, HelixMatchesAnalyticCurvatureAndTorsion)
             << " (analytic " << tau << ")\n";
   EXPECT_NEAR(kMedian, kappa, 0.05 * kappa);
   EXPECT_NEAR(tMedian, tau, 0.05 * tau);
+}
+
+TEST(VoxelCodingSkeletonFilter, HelixMatchesAnalyticCurvatureAndTorsion)
+{
+  const PhantomSpec spec = phantom(PhantomShape::Helix, 96);
+  const SkeletonRun run = runPhantom(spec);
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.factor, 1U); // a small mask: full resolution
+  EXPECT_EQ(run.topology.endPoints, 2);
+  expectHelixCurvatureAndTorsion(run, spec);
+}
+
+// The thick helix at 256^3 (tube radius 12.8 voxels, 750 000 vessel voxels): the automatic
+// scale codes it on 2x2x2 blocks and refines every point on the full-resolution mask, and the
+// result must meet the same targets as a full-resolution run, in input voxels.
+TEST(VoxelCodingSkeletonFilter, ThickHelixCodedAtTheAutomaticScaleMeetsTheFullResolutionTargets)
+{
+  const PhantomSpec spec = phantom(PhantomShape::Helix, 256);
+  const SkeletonRun run = runPhantom(spec);
+  EXPECT_EQ(run.factor, 2U);
+  EXPECT_LT(run.codedVoxels * 6, run.vesselVoxels);
+  expectAccurate(run, 1.0);
+  EXPECT_EQ(run.topology.endPoints, 2);
+  EXPECT_EQ(run.topology.bifurcations, 0);
+  expectHelixCurvatureAndTorsion(run, spec);
+}
+
+// A thick tree (radii 19 / 16 / 12 voxels) at the automatic scale: same topology as full
+// resolution and no less accurate. Near a thick junction the medial axis leaves the analytic
+// segments, so the absolute bound is looser than on the clean tubes.
+TEST(VoxelCodingSkeletonFilter, ThickTreeCodedAtTheAutomaticScaleIsAsAccurateAsFullResolution)
+{
+  PhantomSpec spec = phantom(PhantomShape::Tree, 352);
+  spec.treeRadiusFractions = { 0.055, 0.045, 0.035 };
+  const SkeletonRun full = runPhantom(spec, 2.5, 1);
+  const SkeletonRun automatic = runPhantom(spec);
+  EXPECT_EQ(full.factor, 1U);
+  EXPECT_EQ(automatic.factor, 2U);
+  EXPECT_EQ(automatic.skeleton.validate(), "");
+  EXPECT_EQ(test::check26Connected(automatic.raw, { 1, 1, 1 }), "");
+  EXPECT_EQ(automatic.topology.endPoints, 5);
+  EXPECT_EQ(automatic.topology.bifurcations, 3);
+  EXPECT_EQ(automatic.topology.loops, 0);
+  EXPECT_LE(automatic.accuracy.mean_mm, full.accuracy.mean_mm + 0.05);
+  EXPECT_LE(automatic.accuracy.p95_mm, full.accuracy.p95_mm + 0.1);
+  EXPECT_GE(automatic.accuracy.coverage, full.accuracy.coverage - 0.005);
+  EXPECT_LE(automatic.accuracy.mean_mm, 0.5);
+  EXPECT_LE(automatic.accuracy.p95_mm, 1.25);
+  EXPECT_GE(automatic.accuracy.coverage, 0.98);
+  EXPECT_LE(automatic.accuracy.radiusError_mm, 1.0);
 }
 
 TEST(VoxelCodingSkeletonFilter, YBifurcationHasThreeEndsAndOneBifurcation)
