@@ -8,7 +8,8 @@
 //            --min-branch L          MinimumBranchLength, local radii. Default 2.5.
 //            --vesselness            UseVesselness on (Hessian test on the raw intensities).
 //            --noise SD              phantom: additive Gaussian noise (intensity units). Default 0.
-//            --downsample F          DownsampleFactor.
+//            --downsample F          DownsampleFactor (0 automatic, 1 full resolution; default:
+//                                    the filter's). The JSON "downsample" is the factor used.
 //            --no-mask               do not write mask.raw (no scikit-image comparison needed).
 // Writes <outdir>/voxelcoding.csv (x,y,z mm, radius mm, path id), <outdir>/mask.raw (uint8, the
 // threshold mask, x fastest), for phantoms <outdir>/analytic.csv (x,y,z mm, radius mm), and one
@@ -38,7 +39,7 @@ using Filter = vtouch::VoxelCodingSkeletonFilter<Image>;
 
 struct Options
 {
-  unsigned int downsample = 1;
+  int downsample = -1; // -1: the filter's default (0 = automatic)
   double smoothing_mm = 0.0;
   double minBranch = 2.5;
   bool vesselness = false;
@@ -59,7 +60,10 @@ int run(Image* image, double lower, double upper, const std::string& outdir, con
   filter->SetSmoothingWindow(o.smoothing_mm);
   filter->SetMinimumBranchLength(o.minBranch);
   filter->SetUseVesselness(o.vesselness);
-  filter->SetDownsampleFactor(o.downsample);
+  if (o.downsample >= 0)
+  {
+    filter->SetDownsampleFactor(static_cast<unsigned int>(o.downsample));
+  }
   vtouch::benchmark::PeakMemoryProbe memory;
   memory.start();
   const auto t0 = std::chrono::steady_clock::now();
@@ -70,7 +74,8 @@ int run(Image* image, double lower, double upper, const std::string& outdir, con
   vtouch::benchmark::writeSkeletonCsv(s, outdir + "/voxelcoding.csv");
   const auto size = image->GetLargestPossibleRegion().GetSize();
   std::printf("{\"nx\": %lu, \"ny\": %lu, \"nz\": %lu, \"vessel_voxels\": %llu, \"seconds\": %.5f, "
-              "\"extra_rss_bytes\": %lld, \"paths\": %zu, \"points\": %zu, \"downsample\": %u}\n",
+              "\"extra_rss_bytes\": %lld, \"paths\": %zu, \"points\": %zu, \"downsample\": %u, "
+              "\"coded_voxels\": %llu}\n",
     size[0],
     size[1],
     size[2],
@@ -79,7 +84,8 @@ int run(Image* image, double lower, double upper, const std::string& outdir, con
     extraBytes,
     s.paths.size(),
     s.pointCount(),
-    o.downsample);
+    filter->GetEffectiveDownsampleFactor(),
+    filter->GetNumberOfCodedVoxels());
   return 0;
 }
 
@@ -130,7 +136,7 @@ int main(int argc, char** argv)
     }
     else if (opt == "--downsample" && i + 1 < argc)
     {
-      o.downsample = static_cast<unsigned int>(std::max(1, std::atoi(argv[++i])));
+      o.downsample = std::max(0, std::atoi(argv[++i]));
     }
     else if (opt == "--no-mask")
     {

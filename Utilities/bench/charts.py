@@ -128,7 +128,13 @@ def chart_centerline_scaling(out, results):
                                     float("nan"))
                 ax.loglog(vox, ys, style, color=color,
                           label="%s %s (slope %.2f)" % (
-                              shape, "voxel coding" if who == "vc" else "scikit-image", slope))
+                              shape, "voxel coding, default scale" if who == "vc"
+                              else "scikit-image", slope))
+            fkey = "full_resolution_" + key
+            if all(fkey in r for r in rows):
+                ys = np.maximum(np.array([r[fkey] for r in rows], float), 1e-3)
+                ax.loglog(vox, ys, "s:", color=color, alpha=0.6,
+                          label="%s voxel coding, full resolution" % shape)
     axes[0].set_ylabel("extraction time (s)")
     axes[1].set_ylabel("peak extra resident memory (MB)")
     for ax in axes:

@@ -82,7 +82,8 @@ def centerline_case(build, source, workdir, options=(), skimage=True):
     row = {"seconds": vc["seconds"], "peak_mb": vc["extra_rss_bytes"] / 2**20,
            "mean_dist_vox": mean, "p95_dist_vox": p95, "coverage": cover,
            "vessel_voxels": vc["vessel_voxels"], "volume_voxels": vc["nx"] * vc["ny"] * vc["nz"],
-           "paths": vc["paths"]}
+           "paths": vc["paths"], "factor": vc.get("downsample", 1),
+           "coded_voxels": vc.get("coded_voxels", vc["vessel_voxels"])}
     if skimage:
         out = os.path.join(workdir, "skimage.npy")
         child = subprocess.run([sys.executable, sb.__file__, "--skimage-child",
@@ -113,6 +114,13 @@ def section_centerline(build, quick, tmp):
         for n in sizes:
             row = centerline_case(build, ("phantom", shape, n), os.path.join(tmp, "%s%d" % (shape, n)))
             row["size_vox"] = n
+            # Full resolution beside the default (which picks a coarse scale for large masks of
+            # thick vessels): the chart shows both.
+            full = row if row["factor"] == 1 else centerline_case(
+                build, ("phantom", shape, n), os.path.join(tmp, "%s%d-full" % (shape, n)),
+                ["--downsample", "1"], skimage=False)
+            row["full_resolution_seconds"] = full["seconds"]
+            row["full_resolution_peak_mb"] = full["peak_mb"]
             rows.append(row)
             log("centerline %s %d: VC %.3f s, skimage %.3f s" % (shape, n, row["seconds"],
                                                                     row["skimage_seconds"]))
@@ -122,6 +130,15 @@ def section_centerline(build, quick, tmp):
         top = rows[-1]
         for k, v in top.items():
             results["centerline.%s384.%s" % (shape.lower(), k)] = v
+        # The same volume coded at full resolution (DownsampleFactor 1), beside the default's
+        # automatic scale: what the coarse-to-fine refinement buys and costs.
+        full = top if top["factor"] == 1 else centerline_case(
+            build, ("phantom", shape, sizes[-1]), os.path.join(tmp, "%s-full" % shape),
+            ["--downsample", "1"], skimage=False)
+        log("centerline %s %d full resolution: VC %.3f s (default: factor %d, %.3f s)" % (
+            shape, sizes[-1], full["seconds"], top["factor"], top["seconds"]))
+        for k in ("seconds", "peak_mb", "mean_dist_vox", "p95_dist_vox", "coverage"):
+            results["centerline.%s384.full_resolution_%s" % (shape.lower(), k)] = full[k]
         for who, tkey, mkey in (("vc", "seconds", "peak_mb"),
                                 ("skimage", "skimage_seconds", "skimage_peak_mb")):
             vox = np.array([r["volume_voxels"] for r in rows], float)
