@@ -30,13 +30,17 @@ double AutomaticDownsampling::typicalRadius_vox(const SparseVesselMask& mask)
            : 2.0 * static_cast<double>(mask.vesselCount()) / static_cast<double>(surface);
 }
 
-unsigned int AutomaticDownsampling::factorFor(const SparseVesselMask& mask)
+unsigned int AutomaticDownsampling::factorFor(const SparseVesselMask& mask,
+  const std::array<double, 3>& spacing_mm)
 {
   if (mask.vesselCount() < kMinimumVesselVoxels)
   {
     return 1;
   }
-  const double f = std::floor(typicalRadius_vox(mask) / kCoarseRadius_vox);
+  const double meanSpacing_mm = std::cbrt(spacing_mm[0] * spacing_mm[1] * spacing_mm[2]);
+  const double maxSpacing_mm = std::max({ spacing_mm[0], spacing_mm[1], spacing_mm[2] });
+  const double radius_mm = typicalRadius_vox(mask) * meanSpacing_mm;
+  const double f = std::floor(radius_mm / (kCoarseRadius_vox * maxSpacing_mm));
   return static_cast<unsigned int>(std::clamp(f, 1.0, static_cast<double>(kMaximumFactor)));
 }
 

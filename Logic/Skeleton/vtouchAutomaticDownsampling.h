@@ -6,6 +6,7 @@
 #include "vtouchSparseVesselMask.h"
 #include "vtouchVoxelCoding.h"
 
+#include <array>
 #include <cstdint>
 
 namespace vtouch
@@ -28,9 +29,12 @@ public:
   /// divided by its digital surface factor (1 to about 1.3), so the estimate errs low.
   static double typicalRadius_vox(const SparseVesselMask& mask);
 
-  /// The downsampling factor for `mask`: 1 for small masks, else the largest factor (at most
-  /// kMaximumFactor) that leaves kCoarseRadius_vox coarse voxels in the typical radius.
-  static unsigned int factorFor(const SparseVesselMask& mask);
+  /// The downsampling factor for `mask` with voxels of `spacing_mm`: 1 for small masks, else the
+  /// largest factor (at most kMaximumFactor) that leaves kCoarseRadius_vox coarse voxels, measured
+  /// along the coarse voxel's longest side, in the typical radius (the radius in voxels times the
+  /// geometric mean spacing: anisotropic volumes are coarsened less).
+  static unsigned int factorFor(const SparseVesselMask& mask,
+    const std::array<double, 3>& spacing_mm);
 
   /// True when every path of a skeleton coded at `coarseVoxel_mm` (its largest spacing) that is
   /// longer than its own diameter has a median radius of at least kBranchRadius_vox voxels: no thin

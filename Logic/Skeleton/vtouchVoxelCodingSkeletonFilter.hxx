@@ -384,15 +384,16 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
   }
   const IndexType* seed = this->m_UseSeedPoint ? &seedIndex : nullptr;
   const bool automatic = this->m_DownsampleFactor == 0;
+  const auto& spacing = this->GetInput()->GetSpacing();
   unsigned int factor =
-    automatic ? AutomaticDownsampling::factorFor(mask) : this->m_DownsampleFactor;
+    automatic ? AutomaticDownsampling::factorFor(mask, { spacing[0], spacing[1], spacing[2] })
+              : this->m_DownsampleFactor;
   std::size_t coarseMaskBytes = 0;
   if (factor > 1)
   {
     const SparseVesselMask coarse = mask.downsampled(factor);
     coarseMaskBytes = coarse.memoryBytes();
     this->m_RawSkeleton = this->Code(coarse, factor, seed);
-    const auto& spacing = this->GetInput()->GetSpacing();
     const double coarseVoxel_mm = factor * std::max({ spacing[0], spacing[1], spacing[2] });
     if (automatic &&
         !AutomaticDownsampling::resolvesEveryBranch(this->m_RawSkeleton, coarseVoxel_mm))

@@ -82,7 +82,8 @@ template<typename T>
 vtouch::QSkeleton skeletonize(vtkVesselTouchCenterlineFilter* self,
   vtkImageData* image,
   T* data,
-  const Settings& s)
+  const Settings& s,
+  int& factorUsed)
 {
   using Image = itk::Image<T, 3>;
   using Filter = vtouch::VoxelCodingSkeletonFilter<Image>;
@@ -128,6 +129,7 @@ vtouch::QSkeleton skeletonize(vtkVesselTouchCenterlineFilter* self,
     });
   filter->AddObserver(itk::ProgressEvent(), progress);
   filter->Update();
+  factorUsed = static_cast<int>(filter->GetEffectiveDownsampleFactor());
   return filter->GetSkeleton();
 }
 
@@ -223,6 +225,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->DownsampleFactorUsed = 0;
   if (!input || !output)
   {
     vtkErrorMacro("VesselCenterline needs a vtkImageData input.");
@@ -275,20 +278,21 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   try
   {
     vtouch::QSkeleton skeleton;
+    int factorUsed = 0;
     void* data = scalars->GetVoidPointer(0);
     switch (scalars->GetDataType())
     {
       case VTK_FLOAT:
-        skeleton = skeletonize(this, input, static_cast<float*>(data), s);
+        skeleton = skeletonize(this, input, static_cast<float*>(data), s, factorUsed);
         break;
       case VTK_UNSIGNED_CHAR:
-        skeleton = skeletonize(this, input, static_cast<unsigned char*>(data), s);
+        skeleton = skeletonize(this, input, static_cast<unsigned char*>(data), s, factorUsed);
         break;
       case VTK_SHORT:
-        skeleton = skeletonize(this, input, static_cast<short*>(data), s);
+        skeleton = skeletonize(this, input, static_cast<short*>(data), s, factorUsed);
         break;
       case VTK_UNSIGNED_SHORT:
-        skeleton = skeletonize(this, input, static_cast<unsigned short*>(data), s);
+        skeleton = skeletonize(this, input, static_cast<unsigned short*>(data), s, factorUsed);
         break;
       default:
       {
@@ -298,10 +302,16 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
         {
           copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
         }
-        skeleton = skeletonize(this, input, copy.data(), s);
+        skeleton = skeletonize(this, input, copy.data(), s, factorUsed);
       }
     }
     fillOutput(skeleton, output);
+    // Which scale the default (automatic) DownsampleFactor chose: 1 = full resolution.
+    vtkNew<vtkIntArray> used;
+    used->SetName("DownsampleFactorUsed");
+    used->InsertNextValue(factorUsed);
+    output->GetFieldData()->AddArray(used);
+    this->DownsampleFactorUsed = factorUsed;
   }
   catch (const itk::ProcessAborted&)
   {

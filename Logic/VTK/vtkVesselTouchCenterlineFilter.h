@@ -52,6 +52,9 @@ public:
   /// Default 0.
   vtkSetMacro(DownsampleFactor, int);
   vtkGetMacro(DownsampleFactor, int);
+  /// The factor the last successful run coded at (the automatic choice when DownsampleFactor is
+  /// 0), also in the output's field data as "DownsampleFactorUsed"; 0 before a run.
+  vtkGetMacro(DownsampleFactorUsed, int);
 
   /// Multi-scale Hessian vesselness pre-filter for raw intensity volumes (default off), its
   /// smallest and largest scale in mm (1, 4), number of scales (4) and relative threshold (0.05).
@@ -88,6 +91,7 @@ private:
   double MinimumBranchLength = 2.5;
   double SmoothingWindow = 0.0;
   int DownsampleFactor = 0;
+  int DownsampleFactorUsed = 0;
   bool UseVesselness = false;
   double VesselnessSigmaMinimum = 1.0;
   double VesselnessSigmaMaximum = 4.0;

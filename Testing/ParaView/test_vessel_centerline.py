@@ -42,6 +42,9 @@ for name in TOPOLOGY:
     check.true(poly.GetFieldData().GetArray(name) is not None, "field array %s" % name)
 check.equal(poly.GetFieldData().GetArray("JunctionChildPath").GetNumberOfTuples(), 1,
             "Y has one junction")
+used = poly.GetFieldData().GetArray("DownsampleFactorUsed")
+check.true(used is not None and used.GetValue(0) == 1,
+           "the automatic scale keeps a small mask at full resolution (DownsampleFactorUsed 1)")
 ends, labelled = free_ends(poly)
 check.equal(ends, 3, "Y has three free ends")
 check.equal(labelled, 3, "three points labelled as end points")
@@ -63,10 +66,12 @@ for i in range(0, poly.GetNumberOfPoints()):
     worst = max(worst, sum((a - b) ** 2 for a, b in zip(p, q)) ** 0.5)
 check.true(worst < 2.5, "every point within 2.5 mm of the analytic centerline (worst %.2f)" % worst)
 
-# DownsampleFactor 2: about 8x fewer voxels, same topology, still in world mm near the analytic
-# centerline (within 1 original voxel on average).
+# DownsampleFactor 2: about 8x fewer voxels coded, same topology, refined on the full-resolution
+# mask: in world mm near the analytic centerline (within 1 original voxel on average).
 coarse, _ = centerline("Y bifurcation", DownsampleFactor=2)
 check.equal(coarse.GetNumberOfLines(), 2, "Y downsampled by 2 gives two paths")
+check.equal(coarse.GetFieldData().GetArray("DownsampleFactorUsed").GetValue(0), 2,
+            "DownsampleFactorUsed reports the factor asked for")
 total = 0.0
 for i in range(0, coarse.GetNumberOfPoints()):
     p = coarse.GetPoint(i)
