@@ -19,7 +19,7 @@ constexpr int kMeanShiftIterations = 4;
 constexpr double kSearchRadii = 1.5;
 // In-plane rays for the radius (the distance to the nearest background voxel centre).
 constexpr int kRays = 24;
-// Coarse points on each side used for the tangent of the section plane.
+// Coarse points on each side used for the tangent of the section plane, at least.
 constexpr int kTangentPoints = 2;
 
 using P3 = std::array<double, 3>;
@@ -63,6 +63,16 @@ bool CoarseSkeletonRefiner::vesselAt(const P3& p_mm) const
     stride *= static_cast<std::uint64_t>(this->Fine.dims()[a]);
   }
   return this->Fine.test(lin);
+}
+
+CoarseSkeletonRefiner::P3 CoarseSkeletonRefiner::voxelCentre(const P3& p_mm) const
+{
+  P3 c{};
+  for (int a = 0; a < 3; ++a)
+  {
+    c[a] = std::floor(p_mm[a] / this->Spacing_mm[a] + 0.5) * this->Spacing_mm[a];
+  }
+  return c;
 }
 
 double CoarseSkeletonRefiner::rayToBackground(const P3& p_mm,
@@ -145,13 +155,21 @@ CoarseSkeletonRefiner::Section CoarseSkeletonRefiner::crossSection(const P3& p_m
   }
   this->Visited[static_cast<std::size_t>(start)] = 1;
   this->Queue.push_back(start);
+  // Each sample counts at the in-plane position of the voxel centre it hit, not its own: samples
+  // at half-voxel positions (a block centre on an axis-aligned section) would otherwise all round
+  // the same way and shift the centroid by half a voxel.
+  this->SectionPoints.clear();
   double sumA = 0.0, sumB = 0.0;
   bool open = false;
   for (std::size_t q = 0; q < this->Queue.size(); ++q)
   {
     const int a = this->Queue[q] % side, b = this->Queue[q] / side;
-    sumA += a - n;
-    sumB += b - n;
+    const P3 v = this->voxelCentre(sample(a, b));
+    const double x = (v[0] - p_mm[0]) * u[0] + (v[1] - p_mm[1]) * u[1] + (v[2] - p_mm[2]) * u[2];
+    const double y = (v[0] - p_mm[0]) * w[0] + (v[1] - p_mm[1]) * w[1] + (v[2] - p_mm[2]) * w[2];
+    this->SectionPoints.push_back({ x, y });
+    sumA += x;
+    sumB += y;
     if (a == 0 || b == 0 || a == side - 1 || b == side - 1)
     {
       open = true; // the section reaches the search border: not one closed tube section
@@ -170,12 +188,13 @@ CoarseSkeletonRefiner::Section CoarseSkeletonRefiner::crossSection(const P3& p_m
       }
     }
   }
-  this->PeakBytes = std::max(
-    this->PeakBytes, this->Visited.capacity() + this->Queue.capacity() * sizeof(std::int32_t));
+  this->PeakBytes = std::max(this->PeakBytes,
+    this->Visited.capacity() + this->Queue.capacity() * sizeof(std::int32_t) +
+      this->SectionPoints.capacity() * sizeof(this->SectionPoints[0]));
   const double count = static_cast<double>(this->Queue.size());
   const double area_mm2 = count * h * h;
   constexpr double kPi = 3.14159265358979323846;
-  double x = h * sumA / count, y = h * sumB / count;
+  double x = sumA / count, y = sumB / count;
   if (open || area_mm2 > kJunctionAreaRatio * kPi * coarseRadius_mm * coarseRadius_mm)
   {
     // A section through a junction (or cut along a wall): the centroid of the whole would leave
@@ -188,9 +207,8 @@ CoarseSkeletonRefiner::Section CoarseSkeletonRefiner::crossSection(const P3& p_m
     for (int iteration = 0; iteration < kMeanShiftIterations; ++iteration)
     {
       double sx = 0.0, sy = 0.0, k = 0.0;
-      for (const int q : this->Queue)
+      for (const auto& [qx, qy] : this->SectionPoints)
       {
-        const double qx = (q % side - n) * h, qy = (q / side - n) * h;
         if ((qx - x) * (qx - x) + (qy - y) * (qy - y) <= r2)
         {
           sx += qx;
@@ -236,10 +254,14 @@ std::vector<CoarseSkeletonRefiner::Section> CoarseSkeletonRefiner::refinePath(
     return p;
   };
   std::vector<Section> sections(static_cast<std::size_t>(count));
+  const double coarseVoxel_mm = this->Factor * this->MaxSpacing_mm;
   for (int i = 0; i < count; ++i)
   {
-    const P3 a = fine(std::max(0, i - kTangentPoints));
-    const P3 b = fine(std::min(count - 1, i + kTangentPoints));
+    // The section's normal: the chord over about one radius on each side (at least two points).
+    const int k = std::max(kTangentPoints,
+      static_cast<int>(std::lround(path.radius_mm[static_cast<std::size_t>(i)] / coarseVoxel_mm)));
+    const P3 a = fine(std::max(0, i - k));
+    const P3 b = fine(std::min(count - 1, i + k));
     sections[static_cast<std::size_t>(i)] = this->crossSection(fine(i),
       P3{ b[0] - a[0], b[1] - a[1], b[2] - a[2] },
       path.radius_mm[static_cast<std::size_t>(i)]);

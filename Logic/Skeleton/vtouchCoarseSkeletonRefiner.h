@@ -43,6 +43,8 @@ private:
   /// p_mm) and the distance to the nearest background voxel centre found in its plane.
   Section crossSection(const P3& p_mm, const P3& tangent, double coarseRadius_mm);
   bool vesselAt(const P3& p_mm) const;
+  /// Centre of the voxel that vesselAt(p_mm) tests.
+  P3 voxelCentre(const P3& p_mm) const;
   /// Distance from p_mm to the centre of the first background voxel along an in-plane ray.
   double rayToBackground(const P3& p_mm,
     const P3& direction,
@@ -56,6 +58,7 @@ private:
   unsigned int Factor;
   std::vector<std::uint8_t> Visited; // flood-fill scratch of one cross-section's sample grid
   std::vector<std::int32_t> Queue;
+  std::vector<std::array<double, 2>> SectionPoints; // in-plane (u, w) position of each sample, mm
   std::size_t PeakBytes = 0;
 };
 
