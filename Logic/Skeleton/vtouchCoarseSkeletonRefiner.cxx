@@ -13,6 +13,8 @@ namespace
 // A closed cross-section larger than this many times the coarse tube's area spans a junction
 // (or is cut very obliquely): its centroid would leave the axis, so the coarse centre is kept.
 constexpr double kJunctionAreaRatio = 2.0;
+// Section samples per radius (the grid step, within 1/2 to 2 voxels).
+constexpr double kSamplesPerRadius = 8.0;
 // Mean-shift steps that centre a junction's section on the branch's own disc.
 constexpr int kMeanShiftIterations = 4;
 // The section is searched this many coarse radii (plus one coarse voxel) around the coarse centre.
@@ -70,7 +72,9 @@ CoarseSkeletonRefiner::P3 CoarseSkeletonRefiner::voxelCentre(const P3& p_mm) con
   P3 c{};
   for (int a = 0; a < 3; ++a)
   {
-    c[a] = std::floor(p_mm[a] / this->Spacing_mm[a] + 0.5) * this->Spacing_mm[a];
+    // Inside the volume (a vessel sample): the truncation is the floor (std::floor is a libm call).
+    c[a] = static_cast<double>(static_cast<std::int64_t>(p_mm[a] / this->Spacing_mm[a] + 0.5)) *
+           this->Spacing_mm[a];
   }
   return c;
 }
@@ -118,8 +122,10 @@ CoarseSkeletonRefiner::Section CoarseSkeletonRefiner::crossSection(const P3& p_m
   const P3 u = normalized(cross(t, e));
   const P3 w = cross(t, u);
   const double coarseVoxel_mm = this->Factor * this->MaxSpacing_mm;
+  // About 8 samples per radius (hundreds per section), between 1/2 and 2 voxels apart.
   const double h =
-    coarseRadius_mm >= 4.0 * this->MinSpacing_mm ? this->MinSpacing_mm : 0.5 * this->MinSpacing_mm;
+    this->MinSpacing_mm *
+    std::clamp(coarseRadius_mm / (kSamplesPerRadius * this->MinSpacing_mm), 0.5, 2.0);
   const double extent_mm = kSearchRadii * coarseRadius_mm + coarseVoxel_mm;
   const int n = static_cast<int>(std::ceil(extent_mm / h));
   const int side = 2 * n + 1;

@@ -43,7 +43,7 @@ private:
   /// p_mm) and the distance to the nearest background voxel centre found in its plane.
   Section crossSection(const P3& p_mm, const P3& tangent, double coarseRadius_mm);
   bool vesselAt(const P3& p_mm) const;
-  /// Centre of the voxel that vesselAt(p_mm) tests.
+  /// Centre of the voxel that vesselAt(p_mm) tests (p_mm inside the volume).
   P3 voxelCentre(const P3& p_mm) const;
   /// Distance from p_mm to the centre of the first background voxel along an in-plane ray.
   double rayToBackground(const P3& p_mm,

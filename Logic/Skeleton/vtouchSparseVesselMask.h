@@ -40,6 +40,8 @@ public:
 
   void set(std::uint64_t lin) { this->Bits[lin >> 6] |= (std::uint64_t{ 1 } << (lin & 63)); }
   void reset(std::uint64_t lin) { this->Bits[lin >> 6] &= ~(std::uint64_t{ 1 } << (lin & 63)); }
+  /// Sets the 64 mask bits of voxels 64 w .. 64 w + 63 at once (bit b = voxel 64 w + b).
+  void setWord(std::uint64_t w, std::uint64_t bits) { this->Bits[w] = bits; }
   bool test(std::uint64_t lin) const { return (this->Bits[lin >> 6] >> (lin & 63)) & 1U; }
 
   /// Builds the rank index; must be called after the last set()/reset().

@@ -70,9 +70,13 @@ RawSkeleton VoxelCoder::Impl::run()
   // The BS code runs beside the first propagation(s); buildClusters() waits for it.
   startBoundaryCode();
 
+  // `sources` empty: the SS code from the root is already propagated.
   const auto handle = [&](const std::vector<std::uint32_t>& sources, bool chooseRoot)
   {
-    propagate(sources);
+    if (!sources.empty())
+    {
+      propagate(sources);
+    }
     buildClusters();
     if (chooseRoot)
     {
@@ -96,6 +100,30 @@ RawSkeleton VoxelCoder::Impl::run()
         {
           return;
         }
+        const std::uint32_t root = coarseExtremity(static_cast<std::uint32_t>(lin));
+        if (root != kNoVoxel)
+        {
+          propagate({ root });
+          if (ss[mask.rank(lin)] != kInf) // else the blocks joined two components: exact search
+          {
+            for (std::uint32_t v : order)
+            {
+              flags[mask.rank(v)] |= kComponent;
+            }
+            if (order.size() < par.minimumComponentSize)
+            {
+              resetPropagation();
+              return;
+            }
+            handle({}, true);
+            for (std::uint32_t v : order)
+            {
+              flags[mask.rank(v)] |= kComponent;
+            }
+            return;
+          }
+          resetPropagation();
+        }
         propagate({ static_cast<std::uint32_t>(lin) });
         for (std::uint32_t v : order)
         {
@@ -117,6 +145,13 @@ RawSkeleton VoxelCoder::Impl::run()
   }
   awaitBoundaryCode(); // no component was large enough: nothing waited for it yet
   std::size_t clusterBytes = clusters.capacity() * sizeof(Cluster);
+  if (explorer)
+  {
+    // The block mask and the explorer's codes live until the end of the run.
+    clusterBytes += coarseMask->memoryBytes() + explorer->ss.capacity() * (sizeof(float) + 1) +
+                    explorer->order.capacity() * sizeof(std::uint32_t) +
+                    explorer->peakQueue * sizeof(std::uint32_t);
+  }
   // While the BS code runs, its scratch coexists with the first propagation's queue.
   out.peakBytes = n * (2 * sizeof(float) + sizeof(std::uint32_t) + 1) +
                   order.capacity() * sizeof(std::uint32_t) +

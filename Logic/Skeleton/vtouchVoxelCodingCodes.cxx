@@ -100,6 +100,73 @@ std::vector<std::uint32_t> VoxelCoder::Impl::extremityRegion()
   return region;
 }
 
+std::uint32_t VoxelCoder::Impl::coarseExtremity(std::uint32_t lin)
+{
+  // Below this the exact exploration costs little; the block mask would not pay for itself.
+  constexpr std::uint64_t kCoarseFrom = std::uint64_t{ 1 } << 17;
+  if (mask.vesselCount() < kCoarseFrom || nx < 2 || ny < 2 || nz < 2)
+  {
+    return kNoVoxel;
+  }
+  const StageTimer timer{ *this, "explore" };
+  if (!explorer)
+  {
+    coarseMask = std::make_unique<SparseVesselMask>(mask.downsampled(2));
+    VoxelCodingParameters coarse = par;
+    coarse.spacing_mm = { 2.0 * sp[0], 2.0 * sp[1], 2.0 * sp[2] };
+    coarse.hasSeed = false;
+    explorer = std::make_unique<Impl>(*coarseMask, coarse, noProgress);
+    explorer->ss.assign(coarseMask->vesselCount(), kInf);
+    explorer->flags.assign(coarseMask->vesselCount(), 0);
+  }
+  std::int64_t c[3];
+  coords(lin, c);
+  const auto blockOf = [&](const std::int64_t* v)
+  {
+    return static_cast<std::uint32_t>(
+      v[0] / 2 + explorer->nx * (v[1] / 2 + explorer->ny * (v[2] / 2)));
+  };
+  explorer->propagate({ blockOf(c) });
+  const std::vector<std::uint32_t> region = explorer->extremityRegion();
+  double centre[3] = { 0.0, 0.0, 0.0 }; // in fine voxel indices; a block's centre is 2 I + 0.5
+  for (const std::uint32_t b : region)
+  {
+    std::int64_t bc[3];
+    explorer->coords(b, bc);
+    for (int a = 0; a < 3; ++a)
+    {
+      centre[a] += (2.0 * static_cast<double>(bc[a]) + 0.5) / static_cast<double>(region.size());
+    }
+  }
+  explorer->resetPropagation();
+  // The vessel voxel nearest the end cap's centre, within the blocks around it.
+  std::uint32_t best = kNoVoxel;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  const std::int64_t dims[3] = { nx, ny, nz };
+  std::int64_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(centre[a])) - 2);
+    hi[a] =
+      std::min<std::int64_t>(dims[a] - 1, static_cast<std::int64_t>(std::ceil(centre[a])) + 2);
+  }
+  for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+    for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+      for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+      {
+        const auto v = static_cast<std::uint64_t>(i + nx * (j + ny * k));
+        const double d = (i - centre[0]) * (i - centre[0]) * sp[0] * sp[0] +
+                         (j - centre[1]) * (j - centre[1]) * sp[1] * sp[1] +
+                         (k - centre[2]) * (k - centre[2]) * sp[2] * sp[2];
+        if (d < bestDistance && mask.test(v))
+        {
+          bestDistance = d;
+          best = static_cast<std::uint32_t>(v);
+        }
+      }
+  return best;
+}
+
 void VoxelCoder::Impl::buildClusters()
 {
   awaitBoundaryCode(); // the clusters read bs
@@ -270,16 +337,26 @@ void VoxelCoder::Impl::rootAtThickestEnd()
     }
     return t;
   };
-  float rootBs = 0.0F;
+  // The root's end measured the same way, walking up from the root's cluster (the first in SS
+  // order): a ball of kBands around a rounded cap's apex would see only the cap, and a vessel of
+  // one calibre (a helix) would then always be re-rooted, at the cost of a second SS code.
+  float rootBs = clusters.empty() ? 0.0F : clusters[0].maxBs;
+  for (std::uint32_t c = 0, k = 0; k < kBands && c < clusters.size() && !clusters[c].higher.empty();
+       ++k)
+  {
+    std::uint32_t next = clusters[c].higher.front();
+    for (std::uint32_t h : clusters[c].higher)
+    {
+      next = clusters[h].count > clusters[next].count ? h : next;
+    }
+    c = next;
+    rootBs = std::max(rootBs, clusters[c].maxBs);
+  }
   std::int64_t best = -1;
   float bestBs = 0.0F;
   for (std::uint32_t c = 0; c < clusters.size(); ++c)
   {
-    if (clusters[c].band <= kBands)
-    {
-      rootBs = std::max(rootBs, clusters[c].maxBs);
-    }
-    else if (clusters[c].higher.empty())
+    if (clusters[c].band > kBands && clusters[c].higher.empty())
     {
       const float t = thickness(c);
       if (best < 0 || t > bestBs)

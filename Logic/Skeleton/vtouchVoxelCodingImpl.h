@@ -12,6 +12,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <thread>
 #include <unordered_map>
 
@@ -256,6 +257,17 @@ struct VoxelCoder::Impl
   /// The automatic root: the cluster of voxels farthest from an arbitrary start (double
   /// propagation), reduced to the voxel at its centroid (the end cap is centred on the axis).
   std::vector<std::uint32_t> extremityRegion();
+
+  /// The exploratory half of the double propagation on the 2x2x2 block mask (about a sixth of
+  /// the voxels of a thick vessel): the far end of `lin`'s component from `lin`'s block, as the
+  /// vessel voxel nearest that end cap's centre. kNoVoxel for small masks (the exact search is
+  /// as cheap) or when no vessel voxel lies near it. Any extremity gives a valid SS code, and the
+  /// tree's root is moved to its thickest end afterwards anyway.
+  std::uint32_t coarseExtremity(std::uint32_t lin);
+  static constexpr std::uint32_t kNoVoxel = 0xFFFFFFFFU;
+  std::function<bool(double)> noProgress; // the explorer reports no progress of its own
+  std::unique_ptr<SparseVesselMask> coarseMask;
+  std::unique_ptr<Impl> explorer;
 
   std::uint32_t band(std::uint32_t r) const
   {
