@@ -122,10 +122,12 @@ CoarseSkeletonRefiner::Section CoarseSkeletonRefiner::crossSection(const P3& p_m
   const P3 u = normalized(cross(t, e));
   const P3 w = cross(t, u);
   const double coarseVoxel_mm = this->Factor * this->MaxSpacing_mm;
-  // About 8 samples per radius (hundreds per section), between 1/2 and 2 voxels apart.
+  // About 8 samples per radius, between 1/2 and 1 voxel apart. Coarser grids (up to 2 voxels)
+  // halve the refinement's time on thick vessels but shift the sections near junctions: 384^3
+  // tree mean / p95 0.36 / 1.28 voxel instead of 0.27 / 0.90.
   const double h =
     this->MinSpacing_mm *
-    std::clamp(coarseRadius_mm / (kSamplesPerRadius * this->MinSpacing_mm), 0.5, 2.0);
+    std::clamp(coarseRadius_mm / (kSamplesPerRadius * this->MinSpacing_mm), 0.5, 1.0);
   const double extent_mm = kSearchRadii * coarseRadius_mm + coarseVoxel_mm;
   const int n = static_cast<int>(std::ceil(extent_mm / h));
   const int side = 2 * n + 1;
