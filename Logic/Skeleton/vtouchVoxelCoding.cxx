@@ -101,7 +101,7 @@ RawSkeleton VoxelCoder::Impl::run()
           return;
         }
         const std::uint32_t root = coarseExtremity(static_cast<std::uint32_t>(lin));
-        if (root != kNoVoxel)
+        if (root != kNoVoxel && !(flags[mask.rank(root)] & kComponent))
         {
           propagate({ root });
           if (ss[mask.rank(lin)] != kInf) // else the blocks joined two components: exact search

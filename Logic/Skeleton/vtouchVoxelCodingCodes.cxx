@@ -126,8 +126,19 @@ std::uint32_t VoxelCoder::Impl::coarseExtremity(std::uint32_t lin)
     return static_cast<std::uint32_t>(
       v[0] / 2 + explorer->nx * (v[1] / 2 + explorer->ny * (v[2] / 2)));
   };
-  explorer->propagate({ blockOf(c) });
+  const std::uint32_t start = blockOf(c);
+  if (explorer->flags[coarseMask->rank(start)] & kComponent)
+  {
+    // Its blocks touch a component already explored (small blobs beside a vessel): the exact
+    // search costs the blob's size, another block propagation would cost the vessel's.
+    return kNoVoxel;
+  }
+  explorer->propagate({ start });
   const std::vector<std::uint32_t> region = explorer->extremityRegion();
+  for (const std::uint32_t b : explorer->order)
+  {
+    explorer->flags[coarseMask->rank(b)] |= kComponent;
+  }
   double centre[3] = { 0.0, 0.0, 0.0 }; // in fine voxel indices; a block's centre is 2 I + 0.5
   for (const std::uint32_t b : region)
   {

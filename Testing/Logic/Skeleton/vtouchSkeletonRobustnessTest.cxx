@@ -180,6 +180,46 @@ TEST(VoxelCodingSkeletonFilter, DownsampleFactorTwoStaysWithinOneVoxelOfFullReso
   EXPECT_EQ(filter->GetNumberOfCodedVoxels(), full.raw.vesselVoxels);
 }
 
+// Above 2^17 vessel voxels the automatic root is searched on 2x2x2 blocks. Blobs one voxel off a
+// large vessel share its blocks: each must fall back to the exact search (and be ignored as too
+// small) without re-exploring the vessel, and the vessel's centerline must not change.
+TEST(VoxelCodingSkeletonFilter, SmallBlobsBesideALargeVesselAreIgnored)
+{
+  auto image = tubeImage(320, 40, 40, 20.0, 20.0, 12.0, 5, 314);
+  const Result plain = skeletonize(image, 0.5);
+  ASSERT_GT(plain.raw.vesselVoxels, 1U << 17);
+  float* v = image->GetBufferPointer();
+  int blobs = 0;
+  for (int x = 10; x + 1 < 310; x += 10, ++blobs)
+  {
+    for (int k = 20; k < 22; ++k)
+      for (int j = 34; j < 36; ++j) // the tube's wall is at y <= 32: one voxel of gap
+        for (int i = x; i < x + 2; ++i)
+        {
+          v[i + 320 * (j + 40 * k)] = 1.0F;
+        }
+  }
+  image->Modified();
+  const Result withBlobs = skeletonize(image, 0.5);
+  EXPECT_EQ(withBlobs.raw.vesselVoxels, plain.raw.vesselVoxels + 8U * static_cast<unsigned>(blobs));
+  ASSERT_EQ(withBlobs.skeleton.paths.size(), 1U);
+  ASSERT_EQ(plain.skeleton.paths.size(), 1U);
+  EXPECT_EQ(withBlobs.raw.components, 1);
+  double worst = 0.0;
+  for (const SkeletonPoint& q : withBlobs.skeleton.paths[0].points)
+  {
+    worst = std::max(worst, test::distanceToSkeleton(plain.skeleton, q.position_World_mm));
+    // On the tube's axis (y = z = 20 mm) away from its flat ends, where the medial axis turns
+    // toward the rim (the blobs sit along the whole tube).
+    if (q.position_World_mm.x > 5.0 + 2 * 12.0 && q.position_World_mm.x < 314.0 - 2 * 12.0)
+    {
+      EXPECT_NEAR(q.position_World_mm.y, 20.0, 1.0);
+      EXPECT_NEAR(q.position_World_mm.z, 20.0, 1.0);
+    }
+  }
+  EXPECT_LT(worst, 0.5);
+}
+
 TEST(VoxelCodingSkeletonFilter, WorldCoordinatesFollowOriginSpacingAndDirection)
 {
   auto image = tubeImage(60, 21, 21, 10.0, 10.0, 4.0, 5, 54);
