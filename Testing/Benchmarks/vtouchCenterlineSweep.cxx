@@ -23,7 +23,6 @@
 #include <itkMetaImageIOFactory.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -64,12 +63,7 @@ int run(Image* image, double lower, double upper, const std::string& outdir, con
   {
     filter->SetDownsampleFactor(static_cast<unsigned int>(o.downsample));
   }
-  vtouch::benchmark::PeakMemoryProbe memory;
-  memory.start();
-  const auto t0 = std::chrono::steady_clock::now();
-  filter->Update();
-  const auto t1 = std::chrono::steady_clock::now();
-  const long long extraBytes = memory.extraBytes();
+  const vtouch::benchmark::UpdateCost cost = vtouch::benchmark::measureUpdate(filter);
   const vtouch::QSkeleton& s = filter->GetSkeleton();
   vtouch::benchmark::writeSkeletonCsv(s, outdir + "/voxelcoding.csv");
   const auto size = image->GetLargestPossibleRegion().GetSize();
@@ -80,8 +74,8 @@ int run(Image* image, double lower, double upper, const std::string& outdir, con
     size[1],
     size[2],
     filter->GetNumberOfVesselVoxels(),
-    std::chrono::duration<double>(t1 - t0).count(),
-    extraBytes,
+    cost.seconds,
+    cost.extraBytes,
     s.paths.size(),
     s.pointCount(),
     filter->GetEffectiveDownsampleFactor(),

@@ -18,7 +18,6 @@
 #include <itkMetaImageIOFactory.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -53,12 +52,7 @@ int run(Image* image,
   {
     filter->SetDownsampleFactor(downsample);
   }
-  vtouch::benchmark::PeakMemoryProbe memory;
-  memory.start();
-  const auto t0 = std::chrono::steady_clock::now();
-  filter->Update();
-  const auto t1 = std::chrono::steady_clock::now();
-  const long long extraBytes = memory.extraBytes();
+  const vtouch::benchmark::UpdateCost cost = vtouch::benchmark::measureUpdate(filter);
   const vtouch::QSkeleton& s = filter->GetSkeleton();
   // Stage profile on stderr (the JSON line on stdout stays one line).
   for (const auto& stage : filter->GetRawSkeleton().stageSeconds)
@@ -75,8 +69,8 @@ int run(Image* image,
     size[1],
     size[2],
     filter->GetNumberOfVesselVoxels(),
-    std::chrono::duration<double>(t1 - t0).count(),
-    extraBytes,
+    cost.seconds,
+    cost.extraBytes,
     filter->GetCodeMemoryBytes(),
     s.paths.size(),
     s.pointCount(),

@@ -2,6 +2,7 @@
 
 #include "vtouchPhantomGenerator.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -108,6 +109,18 @@ void PeakMemoryProbe::start()
 long long PeakMemoryProbe::extraBytes() const
 {
   return (statusKb("VmHWM:") - this->BaseKb) * 1024;
+}
+
+UpdateCost measureUpdate(itk::ProcessObject* filter)
+{
+  PeakMemoryProbe memory;
+  memory.start();
+  const auto t0 = std::chrono::steady_clock::now();
+  filter->Update();
+  UpdateCost cost;
+  cost.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  cost.extraBytes = memory.extraBytes();
+  return cost;
 }
 
 } // namespace benchmark

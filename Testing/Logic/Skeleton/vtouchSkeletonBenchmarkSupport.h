@@ -8,6 +8,7 @@
 #include "vtouchQSkeleton.h"
 
 #include <itkImage.h>
+#include <itkProcessObject.h>
 
 #include <string>
 
@@ -48,6 +49,14 @@ public:
 private:
   long long BaseKb = 0;
 };
+
+/// Wall time and peak extra resident memory of one filter->Update().
+struct UpdateCost
+{
+  double seconds = 0.0;
+  long long extraBytes = 0;
+};
+UpdateCost measureUpdate(itk::ProcessObject* filter);
 
 } // namespace benchmark
 } // namespace vtouch
