@@ -195,14 +195,59 @@ std::vector<CurveSample> computeCurveGeometry(const std::vector<Vec3>& points,
   return out;
 }
 
-void applyCurveGeometry(SkeletonPath& path, const CurveGeometryWindows& windows)
+std::vector<CurveSample> computeCurveGeometry(const std::vector<Vec3>& points,
+  const CurveGeometryWindows& windows,
+  std::vector<std::size_t> corners)
+{
+  const std::size_t n = points.size();
+  corners.erase(
+    std::remove_if(
+      corners.begin(), corners.end(), [n](std::size_t c) { return c == 0 || c + 1 >= n; }),
+    corners.end());
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  if (corners.empty())
+  {
+    return computeCurveGeometry(points, windows);
+  }
+  std::vector<CurveSample> out(n);
+  std::size_t first = 0;
+  corners.push_back(n - 1);
+  for (const std::size_t last : corners)
+  {
+    const std::vector<Vec3> piece(points.begin() + static_cast<std::ptrdiff_t>(first),
+      points.begin() + static_cast<std::ptrdiff_t>(last) + 1);
+    const std::vector<CurveSample> g = computeCurveGeometry(piece, windows);
+    // The piece's first point is the previous piece's corner: average the two sides there.
+    if (first > 0)
+    {
+      CurveSample& c = out[first];
+      c.position = (c.position + g.front().position) * 0.5;
+      const Vec3 sum = c.tangent + g.front().tangent;
+      c.tangent = sum.norm() > 1e-9 ? unit(sum) : g.front().tangent;
+      c.curvature = 0.5 * (c.curvature + g.front().curvature);
+      c.torsion = 0.5 * (c.torsion + g.front().torsion);
+    }
+    else
+    {
+      out[first] = g.front();
+    }
+    std::copy(g.begin() + 1, g.end(), out.begin() + static_cast<std::ptrdiff_t>(first) + 1);
+    first = last;
+  }
+  return out;
+}
+
+void applyCurveGeometry(SkeletonPath& path,
+  const CurveGeometryWindows& windows,
+  const std::vector<std::size_t>& corners)
 {
   std::vector<Vec3> p(path.points.size());
   for (std::size_t i = 0; i < p.size(); ++i)
   {
     p[i] = path.points[i].position_World_mm;
   }
-  const std::vector<CurveSample> g = computeCurveGeometry(p, windows);
+  const std::vector<CurveSample> g = computeCurveGeometry(p, windows, corners);
   for (std::size_t i = 0; i < p.size(); ++i)
   {
     SkeletonPoint& q = path.points[i];

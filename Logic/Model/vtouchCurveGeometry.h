@@ -39,8 +39,19 @@ struct CurveGeometryWindows
 std::vector<CurveSample> computeCurveGeometry(const std::vector<Vec3>& points,
   const CurveGeometryWindows& windows);
 
+/// Same, for a curve that may turn sharply at the indices in `corners` (a path that runs from a
+/// vessel into a branch at a junction). No fit spans a corner: each piece between corners is
+/// fitted alone, and a corner point gets the mean of the two one-sided fits that end there
+/// (position, curvature and torsion; the tangent is their normalized sum). Indices out of
+/// range, repeated, or at the ends are ignored.
+std::vector<CurveSample> computeCurveGeometry(const std::vector<Vec3>& points,
+  const CurveGeometryWindows& windows,
+  std::vector<std::size_t> corners);
+
 /// Applies computeCurveGeometry() to the positions of `path` in place (position, tangent,
 /// curvature, torsion); radius and label are left alone.
-void applyCurveGeometry(SkeletonPath& path, const CurveGeometryWindows& windows);
+void applyCurveGeometry(SkeletonPath& path,
+  const CurveGeometryWindows& windows,
+  const std::vector<std::size_t>& corners = {});
 
 } // namespace vtouch

@@ -353,11 +353,12 @@ struct VoxelCoder::Impl
   /// line).
   void joinAlongBranchAxis(Trace& t, double junctionRadius);
 
-  /// The mirror of joinAlongBranchAxis for a path that goes on through a junction: beyond the
+  /// The mirror of joinAlongBranchAxis for a path that goes on through a bifurcation: beyond the
   /// junction (toward its tail, the other child) its trace runs on the ridge of the merged lumen,
   /// inside the child's own axis. Its centres within one junction radius of the junction point are
-  /// put on the straight line from the junction to the first centre beyond that radius.
-  void straightenThroughPaths(std::size_t firstPath);
+  /// put on the straight line from the junction to the first centre beyond that radius. Junctions
+  /// already `recentred` (a vessel running through: vtouchJunctionRecentring.h) are left alone.
+  void straightenThroughPaths(std::size_t firstPath, const std::vector<bool>& recentred);
 
   void traceComponent();
 
@@ -387,6 +388,12 @@ struct VoxelCoder::Impl
   /// one path attached at both ends: a loop. A trace B that meets the skeleton as soon as touches
   /// count is one front split by noise, not a loop.
   void closeLoops();
+
+  /// A free path end that goes on less than a spur's length (MinimumBranchLength local radii)
+  /// beyond the outermost point another path attaches to is a spur of its own: cut at that point.
+  /// Where the second front of a ring is attached next to the first trace's start, the start's
+  /// last voxels would otherwise stick out as an end point of a vessel that has none.
+  void pruneStubEnds(std::size_t firstPath);
 
   /// Any extremity gives a valid SS code, but back-tracing toward a thin end cuts the corners of
   /// the bifurcations on the way (the geodesic hugs the inner wall of a sharp turn). Rooting the

@@ -106,4 +106,62 @@ void VoxelCoder::Impl::closeLoops()
   }
 }
 
+void VoxelCoder::Impl::pruneStubEnds(std::size_t firstPath)
+{
+  for (std::size_t p = firstPath; p < out.paths.size(); ++p)
+  {
+    RawSkeletonPath& path = out.paths[p];
+    const int n = static_cast<int>(path.center_mm.size());
+    int first = n, last = -1; // the outermost points other paths attach to
+    for (const RawJunction& j : out.junctions)
+    {
+      if (j.parentPath == static_cast<int>(p))
+      {
+        first = std::min(first, j.parentPoint);
+        last = std::max(last, j.parentPoint);
+      }
+    }
+    if (last < 0)
+    {
+      continue;
+    }
+    const auto stubLength = [&](int from, int to)
+    {
+      double length = 0.0;
+      for (int i = std::min(from, to); i < std::max(from, to); ++i)
+      {
+        length += distance(path.center_mm[i], path.center_mm[i + 1]);
+      }
+      return length;
+    };
+    const auto isStub = [&](int junctionPoint, int end)
+    {
+      return junctionPoint != end &&
+             stubLength(junctionPoint, end) <
+               std::max(par.minimumBranchLength * nearbyRadius(static_cast<int>(p), junctionPoint),
+                 2.0 * bandWidth);
+    };
+    if (path.tailJunction < 0 && isStub(last, n - 1))
+    {
+      path.voxels.resize(static_cast<std::size_t>(last) + 1);
+      path.center_mm.resize(static_cast<std::size_t>(last) + 1);
+      path.radius_mm.resize(static_cast<std::size_t>(last) + 1);
+    }
+    if (path.headJunction < 0 && first < static_cast<int>(path.center_mm.size()) - 1 &&
+        isStub(first, 0))
+    {
+      path.voxels.erase(path.voxels.begin(), path.voxels.begin() + first);
+      path.center_mm.erase(path.center_mm.begin(), path.center_mm.begin() + first);
+      path.radius_mm.erase(path.radius_mm.begin(), path.radius_mm.begin() + first);
+      for (RawJunction& j : out.junctions)
+      {
+        if (j.parentPath == static_cast<int>(p))
+        {
+          j.parentPoint -= first;
+        }
+      }
+    }
+  }
+}
+
 } // namespace vtouch

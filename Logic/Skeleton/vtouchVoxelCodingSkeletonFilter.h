@@ -80,9 +80,11 @@ public:
   itkGetConstMacro(MinimumBranchLength, double);
   /// Half width W (mm of arc length) of the local cubic fit that smooths the positions; tangent and
   /// curvature use a quartic fit over 6 W and torsion a cubic fit over 7 W (higher derivatives
-  /// need more support). 0 = automatic: positions over 2 S, derivatives over 6 S and 7 S, with
-  /// S = max(2 voxels, median radius of the path). Negative = positions left at the
-  /// center-adjusted voxel positions (derivatives as automatic). Default 0.
+  /// need more support). 0 = automatic: positions over 4 max(1 voxel, R) (two diameters),
+  /// derivatives over 6 S and 7 S, with R the median radius of the path and
+  /// S = max(2 voxels, R). No fit spans a point where another path joins (a corner where the
+  /// trace turns into a branch). Negative = positions left at the center-adjusted voxel positions
+  /// (derivatives as automatic). Default 0.
   itkSetMacro(SmoothingWindow, double);
   itkGetConstMacro(SmoothingWindow, double);
   /// Thickness (mm) of the single-seed code bands whose connected parts form the clusters.

@@ -303,6 +303,16 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
   }
   QSkeleton s;
   s.paths.resize(raw.paths.size());
+  // A path may turn into a branch where another path joins it (the trace runs from a vessel into
+  // its branch): no smoothing window spans such a point, or the fit would cut the corner.
+  std::vector<std::vector<std::size_t>> corners(raw.paths.size());
+  for (const RawJunction& rj : raw.junctions)
+  {
+    if (rj.parentPath >= 0 && static_cast<std::size_t>(rj.parentPath) < corners.size())
+    {
+      corners[rj.parentPath].push_back(static_cast<std::size_t>(rj.parentPoint));
+    }
+  }
   for (std::size_t p = 0; p < raw.paths.size(); ++p)
   {
     const RawSkeletonPath& rp = raw.paths[p];
@@ -324,17 +334,20 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
     }
     std::vector<double> radii = rp.radius_mm;
     std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-    // Windows scale with the vessel: positions keep junction corners, derivatives need more
-    // support.
-    const double scale = std::max(2.0 * maxSpacing, radii[radii.size() / 2]);
+    // Windows scale with the vessel. Positions average over two diameters: the axis cannot carry
+    // detail shorter than the lumen (wall bumps move the medial axis by a fraction of a radius),
+    // and a cubic fit keeps the bends. Derivatives need more support.
+    const double medianRadius = radii[radii.size() / 2];
+    const double scale = std::max(2.0 * maxSpacing, medianRadius);
     CurveGeometryWindows windows;
-    windows.position_mm = this->m_SmoothingWindow > 0.0   ? this->m_SmoothingWindow
-                          : this->m_SmoothingWindow < 0.0 ? 0.0
-                                                          : 2.0 * scale;
+    windows.position_mm = this->m_SmoothingWindow > 0.0 ? this->m_SmoothingWindow
+                          : this->m_SmoothingWindow < 0.0
+                            ? 0.0
+                            : 4.0 * std::max(maxSpacing, medianRadius);
     const double base = this->m_SmoothingWindow > 0.0 ? this->m_SmoothingWindow : scale;
     windows.curvature_mm = 6.0 * base;
     windows.torsion_mm = 7.0 * base;
-    applyCurveGeometry(path, windows);
+    applyCurveGeometry(path, windows, corners[p]);
     path.points.front().label =
       rp.headJunction >= 0 ? PointLabel::Bifurcation : PointLabel::EndPoint;
     path.points.back().label =

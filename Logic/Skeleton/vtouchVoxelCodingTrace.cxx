@@ -1,5 +1,6 @@
 // Voxel coding stages 5-6: center-adjusted back-tracing, paths, end trimming.
 #include "vtouchVoxelCodingImpl.h"
+#include "vtouchJunctionRecentring.h"
 
 namespace vtouch
 {
@@ -366,18 +367,23 @@ void VoxelCoder::Impl::traceComponent()
   if (out.paths.size() > firstPath)
   {
     closeLoops();
+    pruneStubEnds(firstPath);
     trimClosedEnds(firstPath);
-    straightenThroughPaths(firstPath);
+    // A vessel running through a junction gets its own axis back there (vtouchJunctionRecentring);
+    // a path through a bifurcation is straightened beyond it.
+    straightenThroughPaths(firstPath, recentreJunctions(out, firstPath, minSpacing));
   }
 }
 
-void VoxelCoder::Impl::straightenThroughPaths(std::size_t firstPath)
+void VoxelCoder::Impl::straightenThroughPaths(std::size_t firstPath,
+  const std::vector<bool>& recentred)
 {
   const std::size_t nJunctions = out.junctions.size();
   for (std::size_t j = 0; j < nJunctions; ++j)
   {
     const RawJunction junction = out.junctions[j];
-    if (junction.childTail || junction.parentPath < static_cast<int>(firstPath))
+    if (junction.childTail || junction.parentPath < static_cast<int>(firstPath) ||
+        (j < recentred.size() && recentred[j]))
     {
       continue;
     }

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -84,6 +85,83 @@ TEST(CurveGeometry, ShortCurvesKeepTheirPoints)
   EXPECT_NEAR(g[1].position.x, 1.0, 1e-12);
   EXPECT_NEAR(g[0].tangent.x, 1.0, 1e-12);
   EXPECT_TRUE(computeCurveGeometry({}, {}).empty());
+}
+
+/// An L: 30 points along x, then 30 along y, turning at index 30 (the corner, at the origin).
+std::vector<Vec3> lShape()
+{
+  std::vector<Vec3> p;
+  for (int i = -30; i <= 0; ++i)
+  {
+    p.push_back({ 1.0 * i, 0.0, 0.0 });
+  }
+  for (int j = 1; j <= 30; ++j)
+  {
+    p.push_back({ 0.0, 1.0 * j, 0.0 });
+  }
+  return p;
+}
+
+/// Distance from p to the L's two legs.
+double distanceToL(const Vec3& p)
+{
+  const double toX = std::hypot(p.y, p.z) + std::max(0.0, p.x);
+  const double toY = std::hypot(p.x, p.z) + std::max(0.0, -p.y);
+  return std::min(toX, toY);
+}
+
+TEST(CurveGeometry, CornersAreKeptWhenNoFitSpansThem)
+{
+  CurveGeometryWindows w;
+  w.position_mm = 8.0;
+  w.curvature_mm = 12.0;
+  w.torsion_mm = 14.0;
+  const std::vector<Vec3> p = lShape();
+  const std::vector<CurveSample> cut = computeCurveGeometry(p, w);
+  const std::vector<CurveSample> kept = computeCurveGeometry(p, w, { 30 });
+  double worstCut = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    worstCut = std::max(worstCut, distanceToL(cut[i].position));
+    EXPECT_NEAR(distanceToL(kept[i].position), 0.0, 1e-9) << i;
+    EXPECT_NEAR(kept[i].tangent.norm(), 1.0, 1e-9);
+    if (i != 30)
+    {
+      // Straight legs on either side: zero curvature, and the leg's own direction.
+      EXPECT_NEAR(kept[i].curvature, 0.0, 1e-9) << i;
+      EXPECT_NEAR(i < 30 ? kept[i].tangent.x : kept[i].tangent.y, 1.0, 1e-9) << i;
+    }
+  }
+  // Without the corner the fits round it off (by about half a unit here).
+  EXPECT_GT(worstCut, 0.4);
+  // The corner itself: the mean of the two one-sided fits, the bisecting tangent.
+  EXPECT_NEAR(kept[30].position.norm(), 0.0, 1e-9);
+  EXPECT_NEAR(kept[30].tangent.x, std::sqrt(0.5), 1e-9);
+  EXPECT_NEAR(kept[30].tangent.y, std::sqrt(0.5), 1e-9);
+}
+
+TEST(CurveGeometry, CornersAtTheEndsOrOutOfRangeAreIgnored)
+{
+  CurveGeometryWindows w;
+  w.position_mm = 8.0;
+  const std::vector<Vec3> p = lShape();
+  const std::vector<CurveSample> plain = computeCurveGeometry(p, w);
+  const std::vector<CurveSample> ignored =
+    computeCurveGeometry(p, w, { 0, p.size() - 1, p.size(), 1000 });
+  ASSERT_EQ(ignored.size(), plain.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    EXPECT_EQ(ignored[i].position.x, plain[i].position.x);
+    EXPECT_EQ(ignored[i].position.y, plain[i].position.y);
+    EXPECT_EQ(ignored[i].curvature, plain[i].curvature);
+  }
+  // Repeated corners are one corner; two pieces of one point each still give finite output.
+  const std::vector<CurveSample> twice = computeCurveGeometry(p, w, { 30, 30, 31, 29 });
+  for (const CurveSample& s : twice)
+  {
+    EXPECT_TRUE(std::isfinite(s.position.x) && std::isfinite(s.curvature));
+    EXPECT_NEAR(s.tangent.norm(), 1.0, 1e-9);
+  }
 }
 
 } // namespace

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <string>
 #include <vector>
 #include <limits>
 
@@ -56,35 +57,78 @@ tubeImage(int nx, int ny, int nz, double cy, double cz, double r, int x0, int x1
   return image;
 }
 
+/// Skeleton of a rough-walled phantom and its measures against the analytic centerline.
+struct RoughRun
+{
+  test::Accuracy accuracy;
+  test::Topology got, want;
+  std::string connectivity;
+};
+
+RoughRun skeletonizeRough(PhantomShape shape, std::uint32_t seed)
+{
+  PhantomSpec spec;
+  spec.shape = shape;
+  spec.dimensions = { 96, 96, 96 };
+  spec.wallRoughness = 0.2;
+  spec.seed = seed;
+  PhantomGenerator generator(spec);
+  EXPECT_TRUE(generator.ok()) << generator.error();
+  auto image = test::phantomImage(generator);
+  const Result r = skeletonize(image, test::wallThreshold(spec));
+  const double merge = 3.0 * spec.radiusFraction * spec.referenceLength_mm();
+  RoughRun run;
+  run.got = test::topology(r.skeleton, merge);
+  run.want = test::topology(generator.centerline(), merge);
+  run.accuracy = test::measure(r.skeleton, generator, 1.5);
+  run.connectivity = test::check26Connected(r.raw, { 1, 1, 1 });
+  std::cout << "rough " << toString(shape) << " seed " << seed << ": mean " << run.accuracy.mean_mm
+            << " vox, p95 " << run.accuracy.p95_mm << " vox, coverage " << run.accuracy.coverage
+            << "\n";
+  return run;
+}
+
+void expectTopologyAndCoverage(const RoughRun& run)
+{
+  EXPECT_EQ(run.got.endPoints, run.want.endPoints);
+  EXPECT_EQ(run.got.bifurcations, run.want.bifurcations);
+  EXPECT_EQ(run.got.loops, run.want.loops);
+  EXPECT_EQ(run.connectivity, "");
+  EXPECT_GE(run.accuracy.coverage, 0.99);
+}
+
 TEST(VoxelCodingSkeletonFilter, RoughWalledVesselsKeepTopologyAndAccuracy)
 {
   for (PhantomShape shape :
     { PhantomShape::Helix, PhantomShape::YBifurcation, PhantomShape::LoopNetwork })
   {
-    PhantomSpec spec;
-    spec.shape = shape;
-    spec.dimensions = { 96, 96, 96 };
-    spec.wallRoughness = 0.2;
-    PhantomGenerator generator(spec);
-    ASSERT_TRUE(generator.ok()) << generator.error();
-    auto image = test::phantomImage(generator);
-    const Result r = skeletonize(image, test::wallThreshold(spec));
-    const double merge = 3.0 * spec.radiusFraction * spec.referenceLength_mm();
-    const test::Topology got = test::topology(r.skeleton, merge);
-    const test::Topology want = test::topology(generator.centerline(), merge);
-    const test::Accuracy acc = test::measure(r.skeleton, generator, 1.5);
     SCOPED_TRACE(toString(shape));
-    EXPECT_EQ(got.endPoints, want.endPoints);
-    EXPECT_EQ(got.bifurcations, want.bifurcations);
-    EXPECT_EQ(got.loops, want.loops);
-    EXPECT_EQ(test::check26Connected(r.raw, { 1, 1, 1 }), "");
-    EXPECT_GE(acc.coverage, 0.99);
-    // The medial axis of a rough tube follows its wall bumps; the rough loop network reaches
-    // mean 0.45 / p95 1.08 voxel (issue target 0.35 / 1.0, met by the helix and the Y).
-    const bool loop = shape == PhantomShape::LoopNetwork;
-    EXPECT_LE(acc.mean_mm, loop ? 0.5 : 0.35);
-    EXPECT_LE(acc.p95_mm, loop ? 1.15 : 1.0);
+    const RoughRun run = skeletonizeRough(shape, 1);
+    expectTopologyAndCoverage(run);
+    EXPECT_LE(run.accuracy.mean_mm, 0.35);
+    EXPECT_LE(run.accuracy.p95_mm, 1.0);
   }
+}
+
+/// The wall bumps are random: the loop network (four junctions where branches leave a curved
+/// ring) over six wall seeds. Each seed keeps its topology and the p95 target; the mean target
+/// holds on average (seeds differ by +-0.05 voxel: the lumen's own cross-section centre is
+/// 0.3-0.4 voxel off the analytic line at this roughness).
+TEST(VoxelCodingSkeletonFilter, RoughLoopNetworkMeetsTheTargetsAcrossWallSeeds)
+{
+  double sum = 0.0;
+  int count = 0;
+  for (std::uint32_t seed = 1; seed <= 6; ++seed)
+  {
+    SCOPED_TRACE(seed);
+    const RoughRun run = skeletonizeRough(PhantomShape::LoopNetwork, seed);
+    expectTopologyAndCoverage(run);
+    EXPECT_LE(run.accuracy.p95_mm, 1.0);
+    EXPECT_LE(run.accuracy.mean_mm, 0.45);
+    sum += run.accuracy.mean_mm;
+    ++count;
+  }
+  EXPECT_LE(sum / count, 0.35);
 }
 
 TEST(VoxelCodingSkeletonFilter, AnisotropicSpacingGivesTheSameCenterlineInMillimetres)

@@ -242,6 +242,23 @@ TEST(VoxelCodingSkeletonFilter, LoopNetworkComesOutAsOneLoop)
   EXPECT_EQ(run.analyticTopology.loops, 1);
 }
 
+/// A ring alone (Yi & Hayward's circle): one loop and no end. The second SS front is attached
+/// next to where the first trace started; what is left beyond that point is a stub, not a vessel
+/// end.
+TEST(VoxelCodingSkeletonFilter, RingHasOneLoopAndNoEnd)
+{
+  for (int n : { 96, 128 })
+  {
+    SCOPED_TRACE(n);
+    const SkeletonRun run = runPhantom(phantom(PhantomShape::Circle, n));
+    expectAccurate(run, 1.0);
+    EXPECT_EQ(run.topology.loops, 1);
+    EXPECT_EQ(run.topology.endPoints, 0);
+    EXPECT_EQ(run.topology.bifurcations, 0);
+    EXPECT_EQ(run.analyticTopology.loops, 1);
+  }
+}
+
 TEST(VoxelCodingSkeletonFilter, ColumnOfFourByFourVoxelsIsNotEmpty)
 {
   PhantomSpec spec = phantom(PhantomShape::Column, 24);
