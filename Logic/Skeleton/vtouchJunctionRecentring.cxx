@@ -206,25 +206,6 @@ bool fitQuadratic(const std::vector<std::pair<double, P3>>& samples, Quadratic& 
   return true;
 }
 
-/// The largest radius of a path within one radius of a point (as the tracer's nearbyRadius).
-double junctionRadius(const RawSkeletonPath& p, int point)
-{
-  const double r0 = p.radius_mm[point];
-  double r = r0;
-  for (int step : { -1, 1 })
-  {
-    for (int i = point + step; i >= 0 && i < static_cast<int>(p.radius_mm.size()); i += step)
-    {
-      if (dist(p.center_mm[i], p.center_mm[point]) > r0)
-      {
-        break;
-      }
-      r = std::max(r, p.radius_mm[i]);
-    }
-  }
-  return r;
-}
-
 /// Cumulative fraction of arc length from the junction (0) to the edge point (1) of each inner
 /// point of an arm.
 std::vector<double> innerFractions(const RawSkeletonPath& path, const Arm& arm)
@@ -262,7 +243,7 @@ bool recentreNode(RawSkeleton& s,
 {
   const RawSkeletonPath& parent = s.paths[node.path];
   const P3 j0 = parent.center_mm[node.point];
-  const double radius = junctionRadius(parent, node.point);
+  const double radius = nearbyRadius(parent, node.point);
   const double zone = std::max(par.zoneRadii * radius, par.minimumZone_vox * minSpacing_mm);
   const double reach = std::max(par.reachRadii * radius, 2.0 * minSpacing_mm);
   std::vector<Arm> arms;

@@ -71,6 +71,10 @@ struct RawSkeleton
   std::vector<std::pair<std::string, double>> stageSeconds;
 };
 
+/// The largest radius of a path within one radius (of the point's own) of point `point` along
+/// it: near an end cap or a junction the radius at the point itself underestimates the vessel.
+double nearbyRadius(const RawSkeletonPath& path, int point);
+
 /// Appends a voxel and its centre to the path, filling the gap from the previous point with a
 /// 26-connected voxel line whose positions and radii interpolate the two points. A voxel equal to
 /// the last one is not appended again. Returns the point index of `voxel`.

@@ -524,16 +524,17 @@ std::uint32_t VoxelCoder::Impl::tipStart(const Cluster& c) const
   return mask.test(lin) ? static_cast<std::uint32_t>(lin) : c.bestVoxel;
 }
 
-double VoxelCoder::Impl::nearbyRadius(int path, int point) const
+double nearbyRadius(const RawSkeletonPath& p, int point)
 {
-  const RawSkeletonPath& p = out.paths[path];
   const double r0 = p.radius_mm[point];
   double r = r0;
   for (int step : { -1, 1 })
   {
     for (int i = point + step; i >= 0 && i < static_cast<int>(p.radius_mm.size()); i += step)
     {
-      if (distance(p.center_mm[i], p.center_mm[point]) > r0)
+      const auto& a = p.center_mm[i];
+      const auto& b = p.center_mm[point];
+      if (std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) > r0)
       {
         break;
       }
@@ -541,6 +542,11 @@ double VoxelCoder::Impl::nearbyRadius(int path, int point) const
     }
   }
   return r;
+}
+
+double VoxelCoder::Impl::nearbyRadius(int path, int point) const
+{
+  return vtouch::nearbyRadius(out.paths[path], point);
 }
 
 } // namespace vtouch
