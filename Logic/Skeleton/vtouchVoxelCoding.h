@@ -71,8 +71,10 @@ struct RawSkeleton
   std::vector<std::pair<std::string, double>> stageSeconds;
 };
 
-/// The largest radius of a path within one radius (of the point's own) of point `point` along
-/// it: near an end cap or a junction the radius at the point itself underestimates the vessel.
+/// The radius of the vessel at point `point` of a path: that of the largest inscribed ball
+/// centred on the path that contains the point. Near an end cap or a junction the radius at the
+/// point itself underestimates the vessel (a branch that leaves from a rounded end cap leaves
+/// from the vessel, not from the cap's thin apex).
 double nearbyRadius(const RawSkeletonPath& path, int point);
 
 /// Appends a voxel and its centre to the path, filling the gap from the previous point with a

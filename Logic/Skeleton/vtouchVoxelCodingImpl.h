@@ -367,9 +367,15 @@ struct VoxelCoder::Impl
   /// most central voxel.
   std::uint32_t tipStart(const Cluster& c) const;
 
-  /// The largest radius of a path within one radius of a point: near an end cap or a junction
+  /// The vessel radius at a point of a path (vtouch::nearbyRadius): near an end cap or a junction
   /// the radius at the point itself underestimates the vessel a spur grows from.
   double nearbyRadius(int path, int point) const;
+
+  /// Where a trace of `length` reaches a path at its free end (the root, usually), the vessel it
+  /// would leave from is the path's own within `length` of that end: its largest radius there.
+  /// A thin strand of noise voxels on an end cap can become the root; the other strands that
+  /// reach the root are spurs of the vessel, not branches of the strand. 0 elsewhere.
+  double endCapRadius(int path, int point, double length) const;
 
   /// Distance from a point to the nearest skeleton point (brute force: used for a few loop
   /// candidates only).
@@ -388,6 +394,21 @@ struct VoxelCoder::Impl
   /// one path attached at both ends: a loop. A trace B that meets the skeleton as soon as touches
   /// count is one front split by noise, not a loop.
   void closeLoops();
+
+  /// Where the two fronts of a ring met, a cluster touches the skeleton on both sides; when both
+  /// sides were traced already (each from its own tip, e.g. strands of noise on the wall where the
+  /// fronts met), closeLoops() finds no untraced side, and the ring stays open. A cluster whose
+  /// skeleton neighbours are a step apart in the vessel but far apart along the skeleton closes
+  /// the ring with a short path between them.
+  void closeTracedLoops(std::size_t firstPath);
+
+  /// Length of the shortest way along the skeleton between two (path, point) places, with the
+  /// junctions as `links` ((path << 32 | point) -> place, both directions); infinity when it is
+  /// longer than `cutoff` (the search stops there: its cost follows the cutoff, not the skeleton).
+  double skeletonDistance(std::pair<int, int> from,
+    std::pair<int, int> to,
+    double cutoff,
+    const std::unordered_multimap<std::uint64_t, std::pair<int, int>>& links) const;
 
   /// A free path end that goes on less than a spur's length (MinimumBranchLength local radii)
   /// beyond the outermost point another path attaches to is a spur of its own: cut at that point.

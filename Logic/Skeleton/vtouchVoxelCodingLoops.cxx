@@ -1,6 +1,8 @@
 // Voxel coding stage 7: loop closing where two SS fronts meet.
 #include "vtouchVoxelCodingImpl.h"
 
+#include <queue>
+
 namespace vtouch
 {
 
@@ -102,6 +104,145 @@ void VoxelCoder::Impl::closeLoops()
       joined.voxels.insert(joined.voxels.end(), a.voxels.begin(), a.voxels.end());
       emitPath(joined, false, b.path, b.point);
       ++out.loops;
+    }
+  }
+}
+
+namespace
+{
+std::uint64_t placeKey(std::pair<int, int> place)
+{
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(place.first)) << 32) |
+         static_cast<std::uint32_t>(place.second);
+}
+} // namespace
+
+double VoxelCoder::Impl::skeletonDistance(std::pair<int, int> from,
+  std::pair<int, int> to,
+  double cutoff,
+  const std::unordered_multimap<std::uint64_t, std::pair<int, int>>& links) const
+{
+  // Dijkstra from `from` over the skeleton's points, visiting only what lies within `cutoff`:
+  // consecutive points of a path are joined by their distance, junction places by zero.
+  std::unordered_map<std::uint64_t, double> best;
+  using Entry = std::pair<double, std::pair<int, int>>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  best[placeKey(from)] = 0.0;
+  queue.push({ 0.0, from });
+  while (!queue.empty())
+  {
+    const auto [d, u] = queue.top();
+    queue.pop();
+    if (d > best[placeKey(u)])
+    {
+      continue;
+    }
+    if (u == to)
+    {
+      return d;
+    }
+    const auto relax = [&](std::pair<int, int> v, double w)
+    {
+      if (d + w > cutoff)
+      {
+        return;
+      }
+      const auto it = best.find(placeKey(v));
+      if (it == best.end() || d + w < it->second)
+      {
+        best[placeKey(v)] = d + w;
+        queue.push({ d + w, v });
+      }
+    };
+    const RawSkeletonPath& p = out.paths[u.first];
+    for (int step : { -1, 1 })
+    {
+      const int q = u.second + step;
+      if (q >= 0 && q < static_cast<int>(p.center_mm.size()))
+      {
+        relax({ u.first, q }, distance(p.center_mm[u.second], p.center_mm[q]));
+      }
+    }
+    const auto range = links.equal_range(placeKey(u));
+    for (auto it = range.first; it != range.second; ++it)
+    {
+      relax(it->second, 0.0);
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+void VoxelCoder::Impl::closeTracedLoops(std::size_t firstPath)
+{
+  const StageTimer timer{ *this, "loops" };
+  // Junction links in both directions: (path, point) -> (path, point).
+  std::unordered_multimap<std::uint64_t, std::pair<int, int>> links;
+  const auto link = [&](const RawJunction& j)
+  {
+    const std::pair<int, int> child{ j.childPath,
+      j.childTail ? static_cast<int>(out.paths[j.childPath].center_mm.size()) - 1 : 0 };
+    const std::pair<int, int> parent{ j.parentPath, j.parentPoint };
+    links.emplace(placeKey(child), parent);
+    links.emplace(placeKey(parent), child);
+  };
+  for (const RawJunction& j : out.junctions)
+  {
+    link(j);
+  }
+  for (std::uint32_t c = 0; c < clusters.size(); ++c)
+  {
+    // The places on the skeleton next to the cluster: its own and its lower neighbours'.
+    std::vector<std::pair<int, int>> sides;
+    if (clusters[c].path >= static_cast<int>(firstPath))
+    {
+      sides.push_back({ clusters[c].path, clusters[c].point });
+    }
+    for (std::uint32_t q : clusters[c].lower)
+    {
+      if (clusters[q].path >= static_cast<int>(firstPath))
+      {
+        sides.push_back({ clusters[q].path, clusters[q].point });
+      }
+    }
+    if (sides.size() < 2)
+    {
+      continue;
+    }
+    const double radius = std::max(static_cast<double>(clusters[c].maxBs), 0.5 * minSpacing);
+    const double margin = 2.0 * radius + 2.0 * bandWidth;
+    const double cutoff = 2.0 * (margin + par.minimumBranchLength * radius);
+    for (std::size_t a = 0; a < sides.size(); ++a)
+    {
+      for (std::size_t b = a + 1; b < sides.size(); ++b)
+      {
+        const RawSkeletonPath& pa = out.paths[sides[a].first];
+        const RawSkeletonPath& pb = out.paths[sides[b].first];
+        if (distance(pa.center_mm[sides[a].second], pb.center_mm[sides[b].second]) > margin)
+        {
+          continue;
+        }
+        // Along one path a few points apart (the usual case: a cluster and the one below it on
+        // the same trace): joined, no search needed.
+        if (sides[a].first == sides[b].first &&
+            std::abs(sides[a].second - sides[b].second) * maxSpacing * std::sqrt(3.0) <= cutoff)
+        {
+          continue;
+        }
+        if (skeletonDistance(sides[a], sides[b], cutoff, links) <= cutoff)
+        {
+          continue;
+        }
+        // Two sides a step apart in the vessel that the skeleton joins only the long way round:
+        // both fronts of a ring were traced (from two tips where they met), but not joined.
+        Trace t;
+        t.path = sides[a].first;
+        t.point = sides[a].second;
+        t.voxels.push_back(clusters[c].bestVoxel);
+        emitPath(t, false, sides[b].first, sides[b].second);
+        ++out.loops;
+        link(out.junctions[out.junctions.size() - 2]);
+        link(out.junctions.back());
+      }
     }
   }
 }

@@ -349,9 +349,10 @@ void VoxelCoder::Impl::traceComponent()
     }
     if (t.path >= 0)
     {
-      const double radius = nearbyRadius(t.path, t.point);
+      double radius = nearbyRadius(t.path, t.point);
       const double tipToJunction =
         t.length + distance(centerOf(t.voxels.back()), out.paths[t.path].center_mm[t.point]);
+      radius = std::max(radius, endCapRadius(t.path, t.point, tipToJunction));
       if (tipToJunction < std::max(par.minimumBranchLength * radius, 2.0 * bandWidth))
       {
         continue; // a spur
@@ -367,6 +368,7 @@ void VoxelCoder::Impl::traceComponent()
   if (out.paths.size() > firstPath)
   {
     closeLoops();
+    closeTracedLoops(firstPath);
     pruneStubEnds(firstPath);
     trimClosedEnds(firstPath);
     // A vessel running through a junction gets its own axis back there (vtouchJunctionRecentring);
@@ -526,19 +528,49 @@ std::uint32_t VoxelCoder::Impl::tipStart(const Cluster& c) const
 
 double nearbyRadius(const RawSkeletonPath& p, int point)
 {
-  const double r0 = p.radius_mm[point];
-  double r = r0;
+  // The largest inscribed ball centred on the path that contains the point. Walking outward,
+  // no ball beyond the largest radius seen so far can reach back to the point.
+  double r = p.radius_mm[point];
   for (int step : { -1, 1 })
   {
+    double reach = r;
     for (int i = point + step; i >= 0 && i < static_cast<int>(p.radius_mm.size()); i += step)
     {
       const auto& a = p.center_mm[i];
       const auto& b = p.center_mm[point];
-      if (std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) > r0)
+      const double d = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+      if (d > reach)
       {
         break;
       }
-      r = std::max(r, p.radius_mm[i]);
+      reach = std::max(reach, p.radius_mm[i]);
+      if (d <= p.radius_mm[i])
+      {
+        r = std::max(r, p.radius_mm[i]);
+      }
+    }
+  }
+  return r;
+}
+
+double VoxelCoder::Impl::endCapRadius(int path, int point, double length) const
+{
+  const RawSkeletonPath& p = out.paths[path];
+  const int n = static_cast<int>(p.center_mm.size());
+  const bool head = point == 0 && p.headJunction < 0;
+  const bool tail = point == n - 1 && p.tailJunction < 0;
+  if (!head && !tail)
+  {
+    return 0.0;
+  }
+  double r = 0.0;
+  double walked = 0.0;
+  for (int i = point, step = head ? 1 : -1; i >= 0 && i < n && walked <= length; i += step)
+  {
+    r = std::max(r, p.radius_mm[i]);
+    if (i + step >= 0 && i + step < n)
+    {
+      walked += distance(p.center_mm[i], p.center_mm[i + step]);
     }
   }
   return r;
