@@ -13,6 +13,7 @@
 #include <exception>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <thread>
 #include <unordered_map>
 
@@ -341,10 +342,30 @@ struct VoxelCoder::Impl
   /// or, with `tailPath` >= 0, at point (tailPath, tailPoint) of the skeleton (a loop closure).
   void emitPath(const Trace& t, bool startOnBorder, int tailPath, int tailPoint);
 
-  /// A vessel that ends inside the volume ends in a rounded cap; the medial axis stops where the
-  /// inscribed sphere touches the cap's apex, so drop the points whose radius reaches the apex.
-  /// Points that other paths attach to are kept.
+  /// A vessel that ends inside the volume ends in a cap; its centerline ends at the cap's centre,
+  /// one radius back from the apex, where the medial axis would go on to the apex
+  /// (vtouchVoxelCodingEnds.cxx). Points that other paths attach to are kept.
   void trimClosedEnds(std::size_t firstPath);
+  struct EndCap
+  {
+    std::size_t trim = 0; ///< points to drop at the end
+    /// Where the new end point goes (on the axis, at the cap's centre), when the cap was measured.
+    std::optional<std::array<double, 3>> centre_mm;
+  };
+  /// The cap at one free end of `path` (its tail when `fromTail`); see trimClosedEnds.
+  EndCap measureEndCap(const RawSkeletonPath& path,
+    bool fromTail,
+    const std::vector<char>& pinned) const;
+  /// The vessel mask (1 vessel, 0 background) interpolated trilinearly at `p_mm` (scaled index
+  /// frame); -1 where the interpolation needs a voxel outside the volume.
+  double maskValueAt(const std::array<double, 3>& p_mm) const;
+  /// Distance (mm) from `from` along the unit direction `dir` to the wall, where maskValueAt()
+  /// falls below one half (steps of a quarter of the smallest voxel side, interpolated between
+  /// them); < 0 when `from` is not inside, or the march leaves the volume or goes beyond
+  /// `limit_mm` first.
+  double distanceToWall(const std::array<double, 3>& from,
+    const std::array<double, 3>& dir,
+    double limit_mm) const;
 
   /// A branch trace that reaches the skeleton across a thick junction touches it early, on the
   /// crotch side: the corner is cut. Extend the branch's own axis (its centres between `far` and

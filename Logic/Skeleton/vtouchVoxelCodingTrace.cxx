@@ -1,4 +1,5 @@
-// Voxel coding stages 5-6: center-adjusted back-tracing, paths, end trimming.
+// Voxel coding stages 5-6: center-adjusted back-tracing and paths (end caps:
+// vtouchVoxelCodingEnds.cxx).
 #include "vtouchVoxelCodingImpl.h"
 #include "vtouchJunctionRecentring.h"
 
@@ -243,68 +244,6 @@ void VoxelCoder::Impl::emitPath(const Trace& t, bool startOnBorder, int tailPath
       path, parent.voxels[tailPoint], parent.center_mm[tailPoint], parent.radius_mm[tailPoint]);
     out.junctions.push_back({ id, true, tailPath, tailPoint });
     path.tailJunction = static_cast<int>(out.junctions.size()) - 1;
-  }
-}
-
-void VoxelCoder::Impl::trimClosedEnds(std::size_t firstPath)
-{
-  std::vector<char> pinned;
-  for (std::size_t p = firstPath; p < out.paths.size(); ++p)
-  {
-    RawSkeletonPath& path = out.paths[p];
-    pinned.assign(path.voxels.size(), 0);
-    for (const RawJunction& j : out.junctions)
-    {
-      if (j.parentPath == static_cast<int>(p))
-      {
-        pinned[j.parentPoint] = 1;
-      }
-    }
-    // Drop the end points that lie inside the inscribed ball of a point further in.
-    const auto trimCount = [&](bool fromTail)
-    {
-      const std::size_t n = path.voxels.size();
-      const auto at = [&](std::size_t k) { return fromTail ? n - 1 - k : k; };
-      const std::array<double, 3> end = path.center_mm[at(0)];
-      const double tolerance = 0.5 * minSpacing + 0.1 * path.radius_mm[at(n / 2)];
-      std::size_t best = 0;
-      for (std::size_t k = 1; k + 1 < n && !pinned[at(k - 1)]; ++k)
-      {
-        const double d = distance(path.center_mm[at(k)], end);
-        if (d > 3.0 * (path.radius_mm[at(k)] + tolerance))
-        {
-          break;
-        }
-        if (d <= path.radius_mm[at(k)] + tolerance)
-        {
-          best = k;
-        }
-      }
-      return best;
-    };
-    if (closedEnd[p][1] && path.tailJunction < 0)
-    {
-      const std::size_t k = trimCount(true);
-      path.voxels.resize(path.voxels.size() - k);
-      path.center_mm.resize(path.center_mm.size() - k);
-      path.radius_mm.resize(path.radius_mm.size() - k);
-    }
-    if (closedEnd[p][0] && path.headJunction < 0)
-    {
-      const std::size_t k = trimCount(false);
-      path.voxels.erase(path.voxels.begin(), path.voxels.begin() + static_cast<std::ptrdiff_t>(k));
-      path.center_mm.erase(
-        path.center_mm.begin(), path.center_mm.begin() + static_cast<std::ptrdiff_t>(k));
-      path.radius_mm.erase(
-        path.radius_mm.begin(), path.radius_mm.begin() + static_cast<std::ptrdiff_t>(k));
-      for (RawJunction& j : out.junctions)
-      {
-        if (j.parentPath == static_cast<int>(p))
-        {
-          j.parentPoint -= static_cast<int>(k);
-        }
-      }
-    }
   }
 }
 
