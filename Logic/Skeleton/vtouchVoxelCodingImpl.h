@@ -423,6 +423,22 @@ struct VoxelCoder::Impl
   /// the ring with a short path between them.
   void closeTracedLoops(std::size_t firstPath);
 
+  /// Where the fronts of a ring met amid noise, the meeting zone can hold several SS maxima: each
+  /// front is traced from a tip of its own (often a strand of noise on the wall), short of the
+  /// other front, and no cluster touches both (closeTracedLoops() finds nothing). A free end's
+  /// stem (where the vessel is, not the strand) that faces a point of the skeleton across a short
+  /// gap of vessel (within four radii, within 60 degrees of its outward direction, the straight
+  /// segment inside the mask) that the skeleton reaches only the long way round is joined to it
+  /// by a short path, like a trace that touches the skeleton (pruneStubEnds() then cuts the
+  /// strand beyond the stem).
+  void joinFacingEnds(std::size_t firstPath);
+  /// The vessel voxels of the cheapest way from `from` to `to` (both excluded, in that order)
+  /// along the ridge of the BS code, searched within half their distance plus two `radius` of
+  /// their midpoint; empty when there is none.
+  std::vector<std::uint32_t> medialBridge(std::uint32_t from,
+    std::uint32_t to,
+    double radius) const;
+
   /// Length of the shortest way along the skeleton between two (path, point) places, with the
   /// junctions as `links` ((path << 32 | point) -> place, both directions); infinity when it is
   /// longer than `cutoff` (the search stops there: its cost follows the cutoff, not the skeleton).

@@ -1,10 +1,15 @@
 // Voxel coding stage 7: loop closing where two SS fronts meet.
 #include "vtouchVoxelCodingImpl.h"
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
 #include <queue>
+#include <unordered_map>
 
 namespace vtouch
 {
+using P3Array = std::array<double, 3>;
 
 double VoxelCoder::Impl::distanceToSkeleton(const std::array<double, 3>& q) const
 {
@@ -172,6 +177,97 @@ double VoxelCoder::Impl::skeletonDistance(std::pair<int, int> from,
   return std::numeric_limits<double>::infinity();
 }
 
+namespace
+{
+struct FreeEnd
+{
+  int path = -1;
+  int point = -1;         // the end point's index on its path
+  P3Array centre{};       // mm
+  P3Array outward{};      // unit: from a point about one radius in toward the end
+  double radius_mm = 0.0; // the vessel's radius near the end
+};
+
+/// The radius of the vessel a path point lies in, also where the point is on a strand of noise
+/// on the wall (whose own radius is about a voxel): the largest radius of the path within three
+/// of them, plus `slack_mm`, of the point, grown three times.
+double vesselRadiusNear(const RawSkeletonPath& path, int point, double slack_mm)
+{
+  const int n = static_cast<int>(path.center_mm.size());
+  const P3Array& at = path.center_mm[point];
+  double radius = path.radius_mm[point];
+  for (int pass = 0; pass < 3; ++pass)
+  {
+    const double reach = 3.0 * radius + slack_mm;
+    for (int step : { -1, 1 })
+    {
+      for (int i = point; i >= 0 && i < n; i += step)
+      {
+        const P3Array& c = path.center_mm[i];
+        if (std::hypot(c[0] - at[0], c[1] - at[1], c[2] - at[2]) > reach)
+        {
+          break;
+        }
+        radius = std::max(radius, path.radius_mm[i]);
+      }
+    }
+  }
+  return radius;
+}
+
+/// A free end judged where the vessel is: the traced tip can be a strand of noise on the wall
+/// (radius about one voxel, pointing into the wall), so the end is taken at its stem, the first
+/// point in from the tip whose radius reaches 0.7 of the vessel's (vesselRadiusNear), with the
+/// outward direction over about one radius further in. Empty when the path is too short or a
+/// junction's point comes first.
+std::optional<FreeEnd> freeEndStem(const RawSkeletonPath& path,
+  int id,
+  bool tail,
+  const std::vector<char>& attached,
+  double voxel_mm)
+{
+  const int n = static_cast<int>(path.center_mm.size());
+  const int step = tail ? -1 : 1;
+  const int end = tail ? n - 1 : 0;
+  const auto dist = [&](int i, int j)
+  {
+    const P3Array& a = path.center_mm[i];
+    const P3Array& b = path.center_mm[j];
+    return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+  };
+  const double radius = vesselRadiusNear(path, end, 2.0 * voxel_mm);
+  int stem = end;
+  while (path.radius_mm[stem] < 0.7 * radius)
+  {
+    stem += step;
+    if (stem < 0 || stem >= n || attached[stem])
+    {
+      return std::nullopt;
+    }
+  }
+  int inner = stem + step;
+  while (inner + step >= 0 && inner + step < n && dist(inner, stem) < radius)
+  {
+    inner += step;
+  }
+  if (inner < 0 || inner >= n || dist(inner, stem) <= 0.0)
+  {
+    return std::nullopt;
+  }
+  const double length = dist(inner, stem);
+  FreeEnd e;
+  e.path = id;
+  e.point = stem;
+  e.centre = path.center_mm[stem];
+  e.radius_mm = radius;
+  const P3Array& c = path.center_mm[inner];
+  e.outward = {
+    (e.centre[0] - c[0]) / length, (e.centre[1] - c[1]) / length, (e.centre[2] - c[2]) / length
+  };
+  return e;
+}
+} // namespace
+
 void VoxelCoder::Impl::closeTracedLoops(std::size_t firstPath)
 {
   const StageTimer timer{ *this, "loops" };
@@ -228,7 +324,15 @@ void VoxelCoder::Impl::closeTracedLoops(std::size_t firstPath)
         {
           continue;
         }
-        if (skeletonDistance(sides[a], sides[b], cutoff, links) <= cutoff)
+        // Joined nearby already? Measured with the vessel's radius: the cluster can be a strand
+        // of noise on the wall, whose own radius would take a second bridge across the same
+        // meeting zone for a second loop.
+        const double vessel = std::max({ radius,
+          vesselRadiusNear(pa, sides[a].second, 2.0 * maxSpacing),
+          vesselRadiusNear(pb, sides[b].second, 2.0 * maxSpacing) });
+        const double nearby = std::max(
+          cutoff, 2.0 * (2.0 * vessel + 2.0 * bandWidth + par.minimumBranchLength * vessel));
+        if (skeletonDistance(sides[a], sides[b], nearby, links) <= nearby)
         {
           continue;
         }
@@ -243,6 +347,203 @@ void VoxelCoder::Impl::closeTracedLoops(std::size_t firstPath)
         link(out.junctions[out.junctions.size() - 2]);
         link(out.junctions.back());
       }
+    }
+  }
+}
+
+std::vector<std::uint32_t> VoxelCoder::Impl::medialBridge(std::uint32_t from,
+  std::uint32_t to,
+  double radius) const
+{
+  // Dijkstra over the vessel voxels within reach of the two ends; a step costs its length times
+  // (radius / BS)^2, so the cheapest way keeps to the ridge of the BS code (the medial axis) and
+  // follows a curved vessel instead of cutting its chord.
+  const P3Array a = centerOf(from);
+  const P3Array b = centerOf(to);
+  const P3Array mid{ 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]) };
+  const double reach = 0.5 * distance(a, b) + 2.0 * radius;
+  std::unordered_map<std::uint32_t, std::pair<double, std::uint32_t>> best; // cost, previous
+  using Entry = std::pair<double, std::uint32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  best[from] = { 0.0, from };
+  queue.push({ 0.0, from });
+  while (!queue.empty())
+  {
+    const auto [cost, v] = queue.top();
+    queue.pop();
+    if (cost > best[v].first)
+    {
+      continue;
+    }
+    if (v == to)
+    {
+      std::vector<std::uint32_t> chain;
+      for (std::uint32_t u = best[to].second; u != from; u = best[u].second)
+      {
+        chain.push_back(u);
+      }
+      std::reverse(chain.begin(), chain.end());
+      return chain; // from `from` to `to`, both excluded
+    }
+    const P3Array cv = centerOf(v);
+    forNeighbours(v,
+      [&](std::uint64_t u, int, std::uint32_t ru)
+      {
+        const auto lin = static_cast<std::uint32_t>(u);
+        const P3Array cu = centerOf(lin);
+        if (distance(cu, mid) > reach)
+        {
+          return;
+        }
+        const double weight = radius / std::max(static_cast<double>(bs[ru]), 0.5 * minSpacing);
+        const double next = cost + distance(cu, cv) * weight * weight;
+        const auto it = best.find(lin);
+        if (it == best.end() || next < it->second.first)
+        {
+          best[lin] = { next, v };
+          queue.push({ next, lin });
+        }
+      });
+  }
+  return {};
+}
+
+void VoxelCoder::Impl::joinFacingEnds(std::size_t firstPath)
+{
+  const StageTimer timer{ *this, "loops" };
+  std::vector<char> attached; // per path point: a junction's parent point
+  std::vector<FreeEnd> ends;
+  for (std::size_t p = firstPath; p < out.paths.size(); ++p)
+  {
+    const RawSkeletonPath& path = out.paths[p];
+    const int n = static_cast<int>(path.center_mm.size());
+    attached.assign(static_cast<std::size_t>(n), 0);
+    for (const RawJunction& j : out.junctions)
+    {
+      if (j.parentPath == static_cast<int>(p))
+      {
+        attached[static_cast<std::size_t>(j.parentPoint)] = 1;
+      }
+    }
+    for (const bool tail : { false, true })
+    {
+      const int end = tail ? n - 1 : 0;
+      if ((tail ? path.tailJunction : path.headJunction) >= 0 || attached[end] || n < 3)
+      {
+        continue;
+      }
+      if (const std::optional<FreeEnd> e =
+            freeEndStem(path, static_cast<int>(p), tail, attached, maxSpacing))
+      {
+        ends.push_back(*e);
+      }
+    }
+  }
+  if (ends.size() < 2)
+  {
+    return;
+  }
+  std::unordered_multimap<std::uint64_t, std::pair<int, int>> links;
+  const auto link = [&](const RawJunction& j)
+  {
+    const std::pair<int, int> child{ j.childPath,
+      j.childTail ? static_cast<int>(out.paths[j.childPath].center_mm.size()) - 1 : 0 };
+    links.emplace(placeKey(child), std::pair<int, int>{ j.parentPath, j.parentPoint });
+    links.emplace(placeKey({ j.parentPath, j.parentPoint }), child);
+  };
+  for (const RawJunction& j : out.junctions)
+  {
+    link(j);
+  }
+  // Each stem joins the nearest point of the skeleton in front of it that passes the tests; the
+  // nearest stems first, and a stem that was joined to is not joined from again.
+  struct Candidate
+  {
+    double gap;
+    std::size_t end;
+    int path, point;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t e = 0; e < ends.size(); ++e)
+  {
+    const FreeEnd& end = ends[e];
+    const double reach = 4.0 * end.radius_mm + 2.0 * bandWidth;
+    for (std::size_t p = firstPath; p < out.paths.size(); ++p)
+    {
+      const RawSkeletonPath& path = out.paths[p];
+      for (std::size_t i = 0; i < path.center_mm.size(); ++i)
+      {
+        const P3Array& c = path.center_mm[i];
+        const P3Array ab{ c[0] - end.centre[0], c[1] - end.centre[1], c[2] - end.centre[2] };
+        const double gap = std::sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]);
+        const double facing =
+          end.outward[0] * ab[0] + end.outward[1] * ab[1] + end.outward[2] * ab[2];
+        if (gap > 0.0 && gap <= reach && facing >= 0.5 * gap)
+        {
+          candidates.push_back({ gap, e, static_cast<int>(p), static_cast<int>(i) });
+        }
+      }
+    }
+  }
+  std::sort(candidates.begin(),
+    candidates.end(),
+    [](const Candidate& x, const Candidate& y) { return x.gap < y.gap; });
+  std::vector<char> used(ends.size(), 0);
+  for (const Candidate& cand : candidates)
+  {
+    const FreeEnd& end = ends[cand.end];
+    const auto target = std::find_if(ends.begin(),
+      ends.end(),
+      [&](const FreeEnd& f) { return f.path == cand.path && f.point == cand.point; });
+    if (used[cand.end] ||
+        (target != ends.end() && used[static_cast<std::size_t>(target - ends.begin())]))
+    {
+      continue;
+    }
+    const P3Array& c = out.paths[cand.path].center_mm[cand.point];
+    // The straight segment between the two lies in the vessel (samples half a voxel apart).
+    const int samples = static_cast<int>(std::ceil(cand.gap / (0.5 * minSpacing)));
+    bool inside = true;
+    for (int i = 1; i < samples && inside; ++i)
+    {
+      const double t = static_cast<double>(i) / samples;
+      std::int64_t index[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        index[a] = std::llround((end.centre[a] + t * (c[a] - end.centre[a])) / sp[a]);
+      }
+      inside = index[0] >= 0 && index[0] < nx && index[1] >= 0 && index[1] < ny && index[2] >= 0 &&
+               index[2] < nz &&
+               mask.test(static_cast<std::uint64_t>(index[0] + nx * (index[1] + ny * index[2])));
+    }
+    if (!inside)
+    {
+      continue;
+    }
+    const double radius = end.radius_mm;
+    const double cutoff = 2.0 * (4.0 * radius + 2.0 * bandWidth + par.minimumBranchLength * radius);
+    if (skeletonDistance({ end.path, end.point }, { cand.path, cand.point }, cutoff, links) <=
+        cutoff)
+    {
+      continue; // joined nearby already: not a ring left open
+    }
+    const auto linOf = [&](const std::array<std::int64_t, 3>& v)
+    { return static_cast<std::uint32_t>(v[0] + nx * (v[1] + ny * v[2])); };
+    std::vector<std::uint32_t> bridge = medialBridge(linOf(out.paths[end.path].voxels[end.point]),
+      linOf(out.paths[cand.path].voxels[cand.point]),
+      radius);
+    Trace t;
+    t.path = end.path;
+    t.point = end.point;
+    t.voxels.assign(bridge.rbegin(), bridge.rend()); // emitPath appends from the back
+    emitPath(t, false, cand.path, cand.point);
+    ++out.loops;
+    link(out.junctions[out.junctions.size() - 2]);
+    link(out.junctions.back());
+    used[cand.end] = 1;
+    if (target != ends.end())
+    {
+      used[static_cast<std::size_t>(target - ends.begin())] = 1;
     }
   }
 }

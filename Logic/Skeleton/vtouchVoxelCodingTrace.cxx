@@ -308,6 +308,7 @@ void VoxelCoder::Impl::traceComponent()
   {
     closeLoops();
     closeTracedLoops(firstPath);
+    joinFacingEnds(firstPath);
     pruneStubEnds(firstPath);
     trimClosedEnds(firstPath);
     // A vessel running through a junction gets its own axis back there (vtouchJunctionRecentring);
