@@ -138,6 +138,41 @@ LocalFit fitAt(const std::vector<Vec3>& p,
   return fit;
 }
 
+/// The half width of point i's position fit: position_mm, widened toward widestPosition_mm (see
+/// CurveGeometryWindows) while every point within the window bends with a radius of curvature
+/// of at least the window / kBendRatio. Grows outward from i, nearest point first.
+constexpr double kBendRatio = 1.2;
+double positionWindow(const std::vector<double>& s,
+  const std::vector<CurveSample>& samples,
+  std::size_t i,
+  const CurveGeometryWindows& windows)
+{
+  if (windows.widestPosition_mm <= windows.position_mm)
+  {
+    return windows.position_mm;
+  }
+  const std::size_t n = s.size();
+  double window = 0.0;
+  double curvature = samples[i].curvature;
+  std::size_t a = i, b = i;
+  while (a > 0 || b + 1 < n)
+  {
+    const double left = a > 0 ? s[i] - s[a - 1] : 1e300;
+    const double right = b + 1 < n ? s[b + 1] - s[i] : 1e300;
+    const bool takeLeft = left <= right;
+    const double reach = takeLeft ? left : right;
+    const double bend = std::max(curvature, samples[takeLeft ? a - 1 : b + 1].curvature);
+    if (reach > windows.widestPosition_mm || reach * bend > kBendRatio)
+    {
+      break;
+    }
+    window = reach;
+    curvature = bend;
+    takeLeft ? --a : ++b;
+  }
+  return std::max(windows.position_mm, window);
+}
+
 Vec3 unit(const Vec3& v)
 {
   const double n = v.norm();
@@ -168,14 +203,6 @@ std::vector<CurveSample> computeCurveGeometry(const std::vector<Vec3>& points,
   }
   for (std::size_t i = 0; i < n; ++i)
   {
-    if (windows.position_mm > 0.0)
-    {
-      const LocalFit f = fitAt(points, s, i, windows.position_mm, 3);
-      if (f.ok)
-      {
-        out[i].position = f.d[0];
-      }
-    }
     const LocalFit k = fitAt(points, s, i, std::max(windows.curvature_mm, 1e-6), 4);
     if (k.ok && k.d[1].norm() > 0.0)
     {
@@ -190,6 +217,15 @@ std::vector<CurveSample> computeCurveGeometry(const std::vector<Vec3>& points,
       const double b2 = b.dot(b);
       const double speed = t.d[1].norm();
       out[i].torsion = b2 > 1e-12 * std::pow(speed, 6) ? b.dot(t.d[3]) / b2 : 0.0;
+    }
+  }
+  // Positions last: the curvature (fitted on the raw points) sets how wide each window may be.
+  for (std::size_t i = 0; i < n && windows.position_mm > 0.0; ++i)
+  {
+    const LocalFit f = fitAt(points, s, i, positionWindow(s, out, i, windows), 3);
+    if (f.ok)
+    {
+      out[i].position = f.d[0];
     }
   }
   return out;

@@ -22,7 +22,12 @@ struct CurveSample
 /// sampling noise of a voxel curve about like 1/window^k, so each quantity gets its own window.
 struct CurveGeometryWindows
 {
-  double position_mm = 2.0;  ///< cubic fit for the smoothed position; <= 0: positions kept
+  double position_mm = 2.0; ///< cubic fit for the smoothed position; <= 0: positions kept
+  /// Curvature-adaptive widening of the position fit (mm; <= position_mm: every point uses
+  /// position_mm). A point's window grows from position_mm toward this as long as nothing within
+  /// it bends with a radius of curvature under window / 1.2: a cubic's error grows like
+  /// window^4 / radius^3, while a wider window averages more of the noise (wall bumps) away.
+  double widestPosition_mm = 0.0;
   double curvature_mm = 8.0; ///< quartic fit for tangent and curvature
   double torsion_mm = 14.0;  ///< cubic fit for torsion (third derivative)
 };

@@ -226,13 +226,15 @@ private:
 
   void windingLine()
   {
-    // Along x over 0.8 N, oscillating in the x-z plane: two periods of amplitude 0.2 N.
+    // Along x over 0.8 N, oscillating in the x-z plane (by default two periods of amplitude
+    // 0.2 N).
     const Vec3 c = this->center();
     const double L = 0.8 * this->N;
-    const double A = 0.2 * this->N;
+    const double A = this->Spec.windingAmplitudeFraction * this->N;
+    const double w = 2.0 * kPi * this->Spec.windingPeriods;
     this->addPath(
       [=](double t) {
-        return Vec3{ c.x + L * (t - 0.5), c.y, c.z + A * std::sin(4.0 * kPi * t) };
+        return Vec3{ c.x + L * (t - 0.5), c.y, c.z + A * std::sin(w * t) };
       },
       0.0,
       1.0,

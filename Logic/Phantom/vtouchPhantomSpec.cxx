@@ -110,6 +110,15 @@ std::string PhantomSpec::validate() const
         << ") do not fit the volume: radius in (0, 0.45], pitch > 0, pitch x turns <= 0.95";
     return msg.str();
   }
+  if (!std::isfinite(this->windingAmplitudeFraction) || this->windingAmplitudeFraction <= 0.0 ||
+      this->windingAmplitudeFraction > 0.45 || !std::isfinite(this->windingPeriods) ||
+      this->windingPeriods <= 0.0 || this->windingPeriods > 20.0)
+  {
+    msg << "winding line parameters (amplitude " << this->windingAmplitudeFraction << ", periods "
+        << this->windingPeriods
+        << ") do not fit the volume: amplitude in (0, 0.45], periods in (0, 20]";
+    return msg.str();
+  }
   if (this->treeDepth < 1 || this->treeDepth > 6)
   {
     msg << "tree depth " << this->treeDepth << " must be in 1..6";

@@ -47,6 +47,14 @@ struct PhantomSpec
   double helixPitchFraction = 0.25;
   double helixTurns = 3.0;
 
+  /// WindingLine: amplitude of the oscillation as a fraction of N, and number of periods over
+  /// the line's 0.8 N. The crests bend with a radius of curvature 0.64 N / (amplitude (2 pi
+  /// periods)^2): with the defaults 0.02 N, tighter than the default vessel radius, so the tube
+  /// folds onto itself at every crest (Yi & Hayward's object shows projection cusps; its mask has
+  /// no single medial axis there). Amplitude 0.1 and one period give 0.16 N: a sinuous vessel.
+  double windingAmplitudeFraction = 0.2;
+  double windingPeriods = 2.0;
+
   int treeDepth = 3;            ///< Tree generations (1..6); 3 gives seven segments
   double treeRadiusRatio = 0.8; ///< child radius / parent radius in the tree
   /// Optional explicit radius fraction per tree generation (overrides radiusFraction and

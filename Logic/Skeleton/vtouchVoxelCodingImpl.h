@@ -316,6 +316,10 @@ struct VoxelCoder::Impl
   /// the vessel) that lie within about one radius of it. Restricting the slab to the neighbourhood
   /// keeps the point in its own branch where a slab still spans two branches near a bifurcation.
   std::array<double, 3> adjustedCenter(std::uint32_t lin);
+  /// The voxel of largest BS in `lin`'s slab (cluster) within the distance the ridge can be from
+  /// it: where a trace that was held off the ridge should have been.
+  std::uint32_t ridgeVoxelNear(std::uint32_t lin, std::uint32_t cluster);
+  std::vector<std::uint32_t> ridgeScratch;
 
   struct Trace
   {

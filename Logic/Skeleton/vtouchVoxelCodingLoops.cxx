@@ -464,12 +464,37 @@ void VoxelCoder::Impl::joinFacingEnds(std::size_t firstPath)
     int path, point;
   };
   std::vector<Candidate> candidates;
+  // Each path's bounding box: an end looks only at the paths within its reach (a large tree has
+  // thousands of ends and paths).
+  std::vector<std::array<P3Array, 2>> boxes(out.paths.size());
+  for (std::size_t p = firstPath; p < out.paths.size(); ++p)
+  {
+    boxes[p] = { out.paths[p].center_mm.front(), out.paths[p].center_mm.front() };
+    for (const P3Array& c : out.paths[p].center_mm)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        boxes[p][0][a] = std::min(boxes[p][0][a], c[a]);
+        boxes[p][1][a] = std::max(boxes[p][1][a], c[a]);
+      }
+    }
+  }
   for (std::size_t e = 0; e < ends.size(); ++e)
   {
     const FreeEnd& end = ends[e];
     const double reach = 4.0 * end.radius_mm + 2.0 * bandWidth;
     for (std::size_t p = firstPath; p < out.paths.size(); ++p)
     {
+      bool near = true;
+      for (int a = 0; a < 3; ++a)
+      {
+        near = near && end.centre[a] >= boxes[p][0][a] - reach &&
+               end.centre[a] <= boxes[p][1][a] + reach;
+      }
+      if (!near)
+      {
+        continue;
+      }
       const RawSkeletonPath& path = out.paths[p];
       for (std::size_t i = 0; i < path.center_mm.size(); ++i)
       {
@@ -478,7 +503,9 @@ void VoxelCoder::Impl::joinFacingEnds(std::size_t firstPath)
         const double gap = std::sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]);
         const double facing =
           end.outward[0] * ab[0] + end.outward[1] * ab[1] + end.outward[2] * ab[2];
-        if (gap > 0.0 && gap <= reach && facing >= 0.5 * gap)
+        // On the vessel, not on a strand of noise on its wall.
+        const bool inVessel = path.radius_mm[i] >= 0.5 * end.radius_mm;
+        if (gap > 0.0 && gap <= reach && facing >= 0.5 * gap && inVessel)
         {
           candidates.push_back({ gap, e, static_cast<int>(p), static_cast<int>(i) });
         }
@@ -578,9 +605,12 @@ void VoxelCoder::Impl::pruneStubEnds(std::size_t firstPath)
     };
     const auto isStub = [&](int junctionPoint, int end)
     {
+      // The vessel's radius there: the junction can be on a strand of noise on the wall.
       return junctionPoint != end &&
              stubLength(junctionPoint, end) <
-               std::max(par.minimumBranchLength * nearbyRadius(static_cast<int>(p), junctionPoint),
+               std::max(par.minimumBranchLength *
+                          std::max(nearbyRadius(static_cast<int>(p), junctionPoint),
+                            vesselRadiusNear(path, junctionPoint, 2.0 * maxSpacing)),
                  2.0 * bandWidth);
     };
     if (path.tailJunction < 0 && isStub(last, n - 1))

@@ -344,6 +344,10 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
                           : this->m_SmoothingWindow < 0.0
                             ? 0.0
                             : 4.0 * std::max(maxSpacing, medianRadius);
+    // Automatic windows widen to three diameters where the path is straight enough
+    // (CurveGeometryWindows::widestPosition_mm): more of the wall's bumps average out there.
+    windows.widestPosition_mm =
+      this->m_SmoothingWindow == 0.0 ? 6.0 * std::max(maxSpacing, medianRadius) : 0.0;
     const double base = this->m_SmoothingWindow > 0.0 ? this->m_SmoothingWindow : scale;
     windows.curvature_mm = 6.0 * base;
     windows.torsion_mm = 7.0 * base;

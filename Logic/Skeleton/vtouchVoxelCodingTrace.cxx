@@ -50,10 +50,54 @@ constexpr double kJoinFar = 2.0;     // the branch axis is taken between kJoinFa
 constexpr double kJoinOffAxis = 0.5; // the parent point must lie this close to the extended axis
 } // namespace
 
-std::array<double, 3> VoxelCoder::Impl::adjustedCenter(std::uint32_t lin)
+std::uint32_t VoxelCoder::Impl::ridgeVoxelNear(std::uint32_t lin, std::uint32_t cluster)
+{
+  // Within the slab, no farther from `lin` than the ridge can be (the vessel's radius minus
+  // `lin`'s distance to the wall, plus a voxel and a half of discretisation).
+  const float own = bs[mask.rank(lin)];
+  const double limit = static_cast<double>(clusters[cluster].maxBs - own) + 1.5 * maxSpacing;
+  const std::array<double, 3> c0 = centerOf(lin);
+  std::vector<std::uint32_t>& region = ridgeScratch;
+  region.clear();
+  region.push_back(lin);
+  flags[mask.rank(lin)] |= kRegion;
+  std::uint32_t best = lin;
+  for (std::size_t q = 0; q < region.size(); ++q)
+  {
+    if (bs[mask.rank(region[q])] > bs[mask.rank(best)])
+    {
+      best = region[q];
+    }
+    forNeighbours(region[q],
+      [&](std::uint64_t u, int, std::uint32_t ru)
+      {
+        if (!(flags[ru] & kRegion) && (aux[ru] & ~kLabelled) == cluster &&
+            distance(centerOf(static_cast<std::uint32_t>(u)), c0) <= limit)
+        {
+          flags[ru] |= kRegion;
+          region.push_back(static_cast<std::uint32_t>(u));
+        }
+      });
+  }
+  for (std::uint32_t v : region)
+  {
+    flags[mask.rank(v)] &= static_cast<std::uint8_t>(~kRegion);
+  }
+  return best;
+}
+
+std::array<double, 3> VoxelCoder::Impl::adjustedCenter(std::uint32_t traced)
 {
   const StageTimer timer{ *this, "center" };
-  const std::uint32_t cluster = clusterOf(lin);
+  const std::uint32_t cluster = clusterOf(traced);
+  // A trace can be held off the ridge of the BS code: each step must lower the SS code, and in a
+  // bend the SS front puts the lower side next to the inner wall; on anisotropic voxels the step
+  // back toward the ridge, across a long voxel side, often raises it (a sinuous vessel on
+  // 1 x 1 x 2 mm voxels was traced along the inner wall of every crest). The centroid is then
+  // taken around the slab's ridge nearby, not around the traced voxel.
+  const std::uint32_t lin = bs[mask.rank(traced)] < 0.75F * clusters[cluster].maxBs
+                              ? ridgeVoxelNear(traced, cluster)
+                              : traced;
   const std::array<double, 3> c0 = centerOf(lin);
   const double reach = 1.25 * bs[mask.rank(lin)] + 0.5 * bandWidth;
   const double reach2 = reach * reach;

@@ -36,6 +36,8 @@ vtouch::PhantomSpec makeSpec(const vtkVesselTouchPhantomSource* s)
   spec.helixRadiusFraction = self->GetHelixRadiusFraction();
   spec.helixPitchFraction = self->GetHelixPitchFraction();
   spec.helixTurns = self->GetHelixTurns();
+  spec.windingAmplitudeFraction = self->GetWindingAmplitudeFraction();
+  spec.windingPeriods = self->GetWindingPeriods();
   spec.treeDepth = self->GetTreeDepth();
   spec.treeRadiusRatio = self->GetTreeRadiusRatio();
   spec.profile = static_cast<vtouch::PhantomSpec::Profile>(self->GetProfile());

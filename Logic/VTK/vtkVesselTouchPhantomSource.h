@@ -46,6 +46,14 @@ public:
   vtkSetMacro(HelixTurns, double);
   vtkGetMacro(HelixTurns, double);
 
+  /// Winding line: oscillation amplitude as a fraction of N (0.2) and number of periods (2).
+  /// The defaults fold the tube at its crests (see vtouchPhantomSpec.h); 0.1 and 1 give a
+  /// sinuous vessel.
+  vtkSetMacro(WindingAmplitudeFraction, double);
+  vtkGetMacro(WindingAmplitudeFraction, double);
+  vtkSetMacro(WindingPeriods, double);
+  vtkGetMacro(WindingPeriods, double);
+
   /// Tree generations (default 3: seven segments) and child/parent radius ratio (0.8).
   vtkSetMacro(TreeDepth, int);
   vtkGetMacro(TreeDepth, int);
@@ -96,6 +104,8 @@ private:
   double TaperRatio = 1.0;
   double HelixRadiusFraction = 0.3;
   double HelixPitchFraction = 0.25;
+  double WindingAmplitudeFraction = 0.2;
+  double WindingPeriods = 2.0;
   double HelixTurns = 3.0;
   int TreeDepth = 3;
   double TreeRadiusRatio = 0.8;

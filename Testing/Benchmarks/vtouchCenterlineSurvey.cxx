@@ -12,6 +12,12 @@
 //     --only S      the cases whose name contains S
 //     --json FILE   one record per case (name, topology found and expected, mean/p95/coverage in
 //                   voxels, radius error in voxels, seconds, passed, missed)
+//     --lumen-floor for rough-walled cases, also the mean distance from the analytic line of the
+//                   thresholded lumen's own cross-section centroids (normal to the analytic line,
+//                   away from junctions and ends), raw and averaged along the path over the
+//                   filter's position window (+-4 radii): what an ideal centroid-and-smoothing
+//                   estimator scores, i.e. how much of a rough case's error is the phantom's
+//                   lopsided lumen rather than the method
 //     --dump DIR    per case DIR/<case>.output.csv (x,y,z mm, radius mm, path id, distance to the
 //                   analytic line mm) and DIR/<case>.analytic.csv (x,y,z mm, radius mm, path id,
 //                   distance to the output mm): where a case misses
@@ -42,8 +48,16 @@ struct SurveyCase
   int downsample = -1; ///< the filter's DownsampleFactor; -1: its default (automatic)
 };
 
+/// Mean distances (voxels) of the lumen's own centroids from the analytic line (--lumen-floor).
+struct LumenFloor
+{
+  double raw = -1.0;
+  double smoothed = -1.0;
+};
+
 struct SurveyResult
 {
+  LumenFloor floor;
   vtouch::test::Topology got, want;
   vtouch::test::Accuracy accuracy; // in voxels of the longest side
   double seconds = 0.0;
@@ -56,11 +70,30 @@ std::string caseName(const PhantomSpec& s, const char* variant)
   std::ostringstream name;
   name << vtouch::toString(s.shape) << " " << s.dimensions[0] << "x" << s.dimensions[1] << "x"
        << s.dimensions[2] << " r" << s.radiusFraction;
+  if (s.shape == PhantomShape::WindingLine && s.windingPeriods == 1.0)
+  {
+    name << " sinuous";
+  }
   if (*variant)
   {
     name << " " << variant;
   }
   return name.str();
+}
+
+/// A phantom of `shape` with the phantom source's defaults, except the winding line: amplitude 0.1
+/// N over one period, a sinuous vessel (the defaults fold the tube at every crest; that case is
+/// surveyed once, apart).
+PhantomSpec baseSpec(PhantomShape shape)
+{
+  PhantomSpec s;
+  s.shape = shape;
+  if (shape == PhantomShape::WindingLine)
+  {
+    s.windingAmplitudeFraction = 0.1;
+    s.windingPeriods = 1.0;
+  }
+  return s;
 }
 
 /// The survey's cases. Radii are fractions of the smallest side, as in the phantom source.
@@ -71,7 +104,8 @@ std::vector<SurveyCase> surveyCases(bool quick)
     PhantomShape::YBifurcation,
     PhantomShape::Tree,
     PhantomShape::LoopNetwork,
-    PhantomShape::Circle };
+    PhantomShape::Circle,
+    PhantomShape::WindingLine };
   const std::vector<int> sizes = quick ? std::vector<int>{ 97 } : std::vector<int>{ 96, 97, 128 };
   const std::vector<double> radii{ 0.035, 0.05, 0.07 };
   const int wallSeeds = quick ? 2 : 6;
@@ -82,14 +116,12 @@ std::vector<SurveyCase> surveyCases(bool quick)
     {
       for (double r : radii)
       {
-        PhantomSpec s;
-        s.shape = shape;
+        PhantomSpec s = baseSpec(shape);
         s.dimensions = { n, n, n };
         s.radiusFraction = r;
         cases.push_back({ caseName(s, ""), s });
       }
-      PhantomSpec flat;
-      flat.shape = shape;
+      PhantomSpec flat = baseSpec(shape);
       flat.dimensions = { n, n, n };
       flat.profile = PhantomSpec::Profile::Flat;
       cases.push_back({ caseName(flat, "flat"), flat });
@@ -103,15 +135,13 @@ std::vector<SurveyCase> surveyCases(bool quick)
     }
     for (int seed = 1; seed <= wallSeeds; ++seed)
     {
-      PhantomSpec rough;
-      rough.shape = shape;
+      PhantomSpec rough = baseSpec(shape);
       rough.dimensions = { 96, 96, 96 };
       rough.wallRoughness = 0.2;
       rough.seed = static_cast<std::uint32_t>(seed);
       cases.push_back({ caseName(rough, ("rough seed " + std::to_string(seed)).c_str()), rough });
     }
-    PhantomSpec aniso;
-    aniso.shape = shape;
+    PhantomSpec aniso = baseSpec(shape);
     aniso.dimensions = { 97, 97, 49 };
     aniso.spacing_mm = { 1.0, 1.0, 2.0 };
     cases.push_back({ caseName(aniso, "spacing 1x1x2"), aniso });
@@ -121,14 +151,24 @@ std::vector<SurveyCase> surveyCases(bool quick)
       anisoX.dimensions = { 65, 97, 97 };
       anisoX.spacing_mm = { 1.5, 1.0, 1.0 };
       cases.push_back({ caseName(anisoX, "spacing 1.5x1x1"), anisoX });
-      PhantomSpec noisy;
-      noisy.shape = shape;
+      PhantomSpec noisy = baseSpec(shape);
       noisy.dimensions = { 96, 96, 96 };
       noisy.noiseStdDev = 30.0;
       noisy.seed = 2;
       cases.push_back({ caseName(noisy, "noise 30"), noisy });
     }
   }
+  // Yi & Hayward's winding line as the phantom source makes it by default: its crests bend with a
+  // radius of 0.02 N, tighter than the vessel (0.05 N), so the tube folds onto itself there and
+  // the mask has no single medial axis; it misses by construction.
+  PhantomSpec folded;
+  folded.shape = PhantomShape::WindingLine;
+  cases.push_back({ caseName(folded, "default amplitude 0.2, 2 periods (folds)"), folded });
+  // The 4x4-voxel column (the failure case of Lee-style thinning) through the volume.
+  PhantomSpec column;
+  column.shape = PhantomShape::Column;
+  column.dimensions = { 40, 40, 100 };
+  cases.push_back({ caseName(column, ""), column });
   // The issue's thick benchmark vessels, large enough for the automatic scale to code them on
   // 2x2x2 blocks: at that scale (the default) and at full resolution.
   PhantomSpec thickTree;
@@ -193,7 +233,119 @@ void dumpCase(const std::string& dir,
   }
 }
 
-SurveyResult runCase(const SurveyCase& c, const std::string& dumpDir)
+LumenFloor lumenFloor(const vtouch::PhantomGenerator& generator,
+  const vtouch::test::FloatImage* image,
+  double threshold)
+{
+  using vtouch::Vec3;
+  const PhantomSpec& spec = generator.spec();
+  const auto size = image->GetLargestPossibleRegion().GetSize();
+  const float* v = image->GetBufferPointer();
+  const auto vessel = [&](const Vec3& p)
+  {
+    std::int64_t i[3];
+    const double xyz[3] = { p.x, p.y, p.z };
+    for (int a = 0; a < 3; ++a)
+    {
+      i[a] = std::llround((xyz[a] - spec.origin_mm[a]) / spec.spacing_mm[a]);
+      if (i[a] < 0 || i[a] >= static_cast<std::int64_t>(size[a]))
+      {
+        return false;
+      }
+    }
+    return v[i[0] + size[0] * (i[1] + size[1] * i[2])] >= threshold;
+  };
+  const vtouch::QSkeleton& line = generator.centerline();
+  std::vector<Vec3> junctionPoints;
+  for (const vtouch::Junction& j : line.junctions)
+  {
+    junctionPoints.push_back(line.paths[j.parentPath].points[j.parentPoint].position_World_mm);
+  }
+  const double voxel = std::min({ spec.spacing_mm[0], spec.spacing_mm[1], spec.spacing_mm[2] });
+  double rawSum = 0.0, smoothSum = 0.0;
+  int count = 0;
+  for (const vtouch::SkeletonPath& path : line.paths)
+  {
+    const auto& pts = path.points;
+    std::vector<Vec3> offset(pts.size());
+    std::vector<char> valid(pts.size(), 0);
+    for (std::size_t k = 0; k < pts.size(); ++k)
+    {
+      const Vec3 q = pts[k].position_World_mm;
+      const double r = pts[k].radius_mm;
+      bool nearJunction = false;
+      for (const Vec3& j : junctionPoints)
+      {
+        nearJunction = nearJunction || (q - j).norm() < 3.0 * r;
+      }
+      const bool nearEnd = (q - pts.front().position_World_mm).norm() < 2.0 * r ||
+                           (q - pts.back().position_World_mm).norm() < 2.0 * r;
+      if (nearJunction || nearEnd)
+      {
+        continue;
+      }
+      const Vec3 t = pts[k].tangent_World;
+      const Vec3 helper = std::abs(t.x) < 0.9 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
+      Vec3 u = t.cross(helper);
+      u = u * (1.0 / u.norm());
+      const Vec3 w = t.cross(u);
+      Vec3 sum{ 0, 0, 0 };
+      int n = 0;
+      const double step = 0.2 * voxel;
+      const double extent = 1.6 * r;
+      for (double a = -extent; a <= extent; a += step)
+      {
+        for (double b = -extent; b <= extent; b += step)
+        {
+          const Vec3 p = q + u * a + w * b;
+          if (a * a + b * b <= extent * extent && vessel(p))
+          {
+            sum = sum + (u * a + w * b);
+            ++n;
+          }
+        }
+      }
+      if (n > 0)
+      {
+        offset[k] = sum * (1.0 / n);
+        valid[k] = 1;
+      }
+    }
+    // Average the offsets along the path over the filter's position window (+-4 radii).
+    std::vector<double> arc(pts.size(), 0.0);
+    for (std::size_t k = 1; k < pts.size(); ++k)
+    {
+      arc[k] = arc[k - 1] + (pts[k].position_World_mm - pts[k - 1].position_World_mm).norm();
+    }
+    for (std::size_t k = 0; k < pts.size(); ++k)
+    {
+      if (!valid[k])
+      {
+        continue;
+      }
+      const double window = 4.0 * std::max(voxel, pts[k].radius_mm);
+      Vec3 mean{ 0, 0, 0 };
+      int n = 0;
+      for (std::size_t j = 0; j < pts.size(); ++j)
+      {
+        if (valid[j] && std::abs(arc[j] - arc[k]) <= window)
+        {
+          mean = mean + offset[j];
+          ++n;
+        }
+      }
+      rawSum += offset[k].norm();
+      smoothSum += (mean * (1.0 / n)).norm();
+      ++count;
+    }
+  }
+  const double maxSpacing =
+    std::max({ spec.spacing_mm[0], spec.spacing_mm[1], spec.spacing_mm[2] });
+  return count ? LumenFloor{ rawSum / count / maxSpacing, smoothSum / count / maxSpacing }
+               : LumenFloor{};
+}
+
+SurveyResult runCase(const SurveyCase& c, const std::string& dumpDir, bool floor)
 {
   SurveyResult result;
   vtouch::PhantomGenerator generator(c.spec);
@@ -223,6 +375,10 @@ SurveyResult runCase(const SurveyCase& c, const std::string& dumpDir)
     return result;
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (floor && c.spec.wallRoughness > 0.0)
+  {
+    result.floor = lumenFloor(generator, image, vtouch::test::wallThreshold(c.spec));
+  }
   const double voxel_mm =
     std::max({ c.spec.spacing_mm[0], c.spec.spacing_mm[1], c.spec.spacing_mm[2] });
   // Junction points closer than this are one bifurcation (an output may split one in two).
@@ -279,7 +435,9 @@ void writeJson(std::ostream& out, const SurveyCase& c, const SurveyResult& r, bo
   out << "  {\"name\": \"" << c.name << "\", \"got\": \"" << topologyText(r.got)
       << "\", \"want\": \"" << topologyText(r.want) << "\", \"mean_vox\": " << r.accuracy.mean_mm
       << ", \"p95_vox\": " << r.accuracy.p95_mm << ", \"coverage\": " << r.accuracy.coverage
-      << ", \"radius_error_vox\": " << r.accuracy.radiusError_mm << ", \"seconds\": " << r.seconds
+      << ", \"radius_error_vox\": " << r.accuracy.radiusError_mm
+      << ", \"lumen_centroid_raw_vox\": " << r.floor.raw
+      << ", \"lumen_centroid_averaged_vox\": " << r.floor.smoothed << ", \"seconds\": " << r.seconds
       << ", \"passed\": " << (r.missed.empty() ? "true" : "false") << ", \"missed\": \"" << r.missed
       << "\"}" << (last ? "\n" : ",\n");
 }
@@ -287,7 +445,8 @@ void writeJson(std::ostream& out, const SurveyCase& c, const SurveyResult& r, bo
 int usage()
 {
   std::fprintf(stderr,
-    "usage: vesseltouch-centerline-survey [--quick] [--only S] [--json FILE] [--dump DIR]\n");
+    "usage: vesseltouch-centerline-survey [--quick] [--only S] [--json FILE] [--dump DIR] "
+    "[--lumen-floor]\n");
   return 2;
 }
 
@@ -297,6 +456,7 @@ int main(int argc, char** argv)
 {
   bool quick = false;
   std::string only, jsonPath, dumpDir;
+  bool floor = false;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--quick"))
@@ -310,6 +470,10 @@ int main(int argc, char** argv)
     else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
     {
       jsonPath = argv[++i];
+    }
+    else if (!std::strcmp(argv[i], "--lumen-floor"))
+    {
+      floor = true;
     }
     else if (!std::strcmp(argv[i], "--dump") && i + 1 < argc)
     {
@@ -334,11 +498,22 @@ int main(int argc, char** argv)
   int passed = 0;
   for (const SurveyCase& c : cases)
   {
-    const SurveyResult r = runCase(c, dumpDir);
+    const SurveyResult r = runCase(c, dumpDir, floor);
     results.push_back(r);
     passed += r.missed.empty() ? 1 : 0;
+    std::string name = c.name;
+    if (r.floor.raw >= 0.0)
+    {
+      char text[96];
+      std::snprintf(text,
+        sizeof text,
+        " (lumen centroids: raw %.3f, averaged %.3f)",
+        r.floor.raw,
+        r.floor.smoothed);
+      name += text;
+    }
     std::printf("| %s | %s (%s) | %.3f | %.3f | %.3f | %.2f | %.2f | %s%s%s |\n",
-      c.name.c_str(),
+      name.c_str(),
       topologyText(r.got).c_str(),
       topologyText(r.want).c_str(),
       r.accuracy.mean_mm,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using vtouch::PhantomGenerator;
@@ -90,6 +91,35 @@ TEST(PhantomGenerator, HelixCarriesAnalyticCurvatureAndTorsion)
     EXPECT_NEAR(pts[i].torsion_per_mm, c / (a * a + c * c), 1e-4);
     EXPECT_NEAR(pts[i].tangent_World.norm(), 1.0, 1e-9);
   }
+}
+
+// The winding line's crests bend with radius 0.64 N / (A (2 pi k)^2) (amplitude A N, k periods
+// over 0.8 N): the defaults fold the default vessel at every crest, amplitude 0.1 and one period
+// make a sinuous vessel; absurd values are rejected.
+TEST(PhantomGenerator, WindingLineCrestsBendAsSpecified)
+{
+  for (const auto& [amplitude, periods] : { std::pair{ 0.2, 2.0 }, std::pair{ 0.1, 1.0 } })
+  {
+    PhantomSpec spec = smallSpec(PhantomShape::WindingLine);
+    spec.windingAmplitudeFraction = amplitude;
+    spec.windingPeriods = periods;
+    PhantomGenerator g(spec);
+    ASSERT_TRUE(g.ok()) << g.error();
+    const double n = spec.referenceLength_mm();
+    const double crestRadius = 0.64 * n / (amplitude * std::pow(2 * kPi * periods, 2));
+    double largestCurvature = 0.0;
+    for (const auto& q : g.centerline().paths.at(0).points)
+    {
+      largestCurvature = std::max(largestCurvature, q.curvature_per_mm);
+    }
+    EXPECT_NEAR(1.0 / largestCurvature, crestRadius, 0.01 * crestRadius);
+  }
+  PhantomSpec bad = smallSpec(PhantomShape::WindingLine);
+  bad.windingAmplitudeFraction = 0.0;
+  EXPECT_NE(bad.validate().find("winding line"), std::string::npos);
+  bad.windingAmplitudeFraction = 0.1;
+  bad.windingPeriods = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(bad.validate().find("winding line"), std::string::npos);
 }
 
 TEST(PhantomGenerator, CenterlineVoxelIsBrightAndThreeRadiiAwayIsBackground)

@@ -166,3 +166,71 @@ TEST(CurveGeometry, CornersAtTheEndsOrOutOfRangeAreIgnored)
 
 } // namespace
 } // namespace vtouch
+
+namespace vtouch
+{
+namespace
+{
+/// RMS distance of smoothed positions from the circle of radius `rho` around the z axis (a
+/// straight line along x when rho is 0), over the middle 80 % of the points.
+double rmsOffCurve(const std::vector<CurveSample>& g, double rho)
+{
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = g.size() / 10; i + g.size() / 10 < g.size(); ++i, ++n)
+  {
+    const Vec3& p = g[i].position;
+    const double off = rho > 0.0 ? std::hypot(p.x, p.y) - rho : std::hypot(p.y, p.z);
+    sum += off * off + (rho > 0.0 ? p.z * p.z : 0.0);
+  }
+  return std::sqrt(sum / static_cast<double>(n));
+}
+
+std::vector<Vec3> noisyArc(double rho, double length, double noise, std::uint32_t seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, noise);
+  std::vector<Vec3> p;
+  for (double s = 0.0; s <= length; s += 1.0)
+  {
+    if (rho > 0.0)
+    {
+      p.push_back({ rho * std::cos(s / rho) + n(rng), rho * std::sin(s / rho) + n(rng), n(rng) });
+    }
+    else
+    {
+      p.push_back({ s, n(rng), n(rng) });
+    }
+  }
+  return p;
+}
+
+// Where the curve is straight, the position window widens toward widestPosition_mm and averages
+// more of the noise away; on a tight bend it stays at position_mm, so the fit adds no bias there.
+TEST(CurveGeometry, PositionWindowWidensOnStraightStretchesOnly)
+{
+  CurveGeometryWindows fixed;
+  fixed.position_mm = 8.0;
+  fixed.curvature_mm = 24.0;
+  fixed.torsion_mm = 28.0;
+  CurveGeometryWindows adaptive = fixed;
+  adaptive.widestPosition_mm = 12.0;
+  double fixedLine = 0.0, adaptiveLine = 0.0;
+  for (std::uint32_t seed = 1; seed <= 5; ++seed)
+  {
+    const std::vector<Vec3> line = noisyArc(0.0, 200.0, 0.3, seed);
+    fixedLine += rmsOffCurve(computeCurveGeometry(line, fixed), 0.0);
+    adaptiveLine += rmsOffCurve(computeCurveGeometry(line, adaptive), 0.0);
+  }
+  EXPECT_LT(adaptiveLine, 0.85 * fixedLine);
+  // A bend of radius 6 (window / 1.2 = 10 > 6 everywhere): no widening, the same positions.
+  const std::vector<Vec3> arc = noisyArc(6.0, 0.9 * 2.0 * kPi * 6.0, 0.0, 1);
+  const std::vector<CurveSample> a = computeCurveGeometry(arc, adaptive);
+  const std::vector<CurveSample> f = computeCurveGeometry(arc, fixed);
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    EXPECT_NEAR((a[i].position - f[i].position).norm(), 0.0, 1e-12);
+  }
+}
+} // namespace
+} // namespace vtouch
