@@ -163,8 +163,9 @@ VoxelCoder::Impl::EndCap VoxelCoder::Impl::measureEndCap(const RawSkeletonPath& 
   {
     return {};
   }
-  // The cap measured on the mask: the vessel's axis from the centres one to three radii in, then
-  // from a point on it two radii in, the distance to the apex along the axis and the radius
+  // The cap measured on the mask: the vessel's axis from the centres one to three and a half radii
+  // in, then from a point on it about one and a half radii in (the mean of the centres one to two
+  // radii in), the distance to the apex along the axis and the radius
   // across it, both to where the trilinear interpolation of the mask crosses one half (the wall,
   // to a fraction of a voxel in any direction; the nearest voxel's value would read diagonal
   // rays up to a voxel long). The cap's centre is one radius back from the apex. A flattened

@@ -57,38 +57,47 @@ tubeImage(int nx, int ny, int nz, double cy, double cz, double r, int x0, int x1
   return image;
 }
 
-/// Skeleton of a rough-walled phantom and its measures against the analytic centerline.
-struct RoughRun
+/// Skeleton of a phantom and its measures against the analytic centerline; junction points closer
+/// than `mergeRadii` vessel radii count as one bifurcation.
+struct PhantomRun
 {
   test::Accuracy accuracy;
   test::Topology got, want;
   std::string connectivity;
 };
 
-RoughRun skeletonizeRough(PhantomShape shape, std::uint32_t seed)
+PhantomRun skeletonizePhantom(const PhantomSpec& spec, double mergeRadii)
+{
+  PhantomGenerator generator(spec);
+  EXPECT_TRUE(generator.ok()) << generator.error();
+  auto image = test::phantomImage(generator);
+  const Result r = skeletonize(image, test::wallThreshold(spec));
+  const double merge = mergeRadii * spec.radiusFraction * spec.referenceLength_mm();
+  PhantomRun run;
+  run.got = test::topology(r.skeleton, merge);
+  run.want = test::topology(generator.centerline(), merge);
+  run.accuracy = test::measure(r.skeleton, generator, 1.5);
+  run.connectivity = test::check26Connected(r.raw, { 1, 1, 1 });
+  std::cout << toString(spec.shape) << " (roughness " << spec.wallRoughness << ", noise "
+            << spec.noiseStdDev << ", seed " << spec.seed << "): ends " << run.got.endPoints
+            << " bifurcations " << run.got.bifurcations << " loops " << run.got.loops << ", mean "
+            << run.accuracy.mean_mm << " vox, p95 " << run.accuracy.p95_mm << " vox, coverage "
+            << run.accuracy.coverage << "\n";
+  return run;
+}
+
+/// A rough-walled phantom (roughness 0.2) at 96^3.
+PhantomRun skeletonizeRough(PhantomShape shape, std::uint32_t seed)
 {
   PhantomSpec spec;
   spec.shape = shape;
   spec.dimensions = { 96, 96, 96 };
   spec.wallRoughness = 0.2;
   spec.seed = seed;
-  PhantomGenerator generator(spec);
-  EXPECT_TRUE(generator.ok()) << generator.error();
-  auto image = test::phantomImage(generator);
-  const Result r = skeletonize(image, test::wallThreshold(spec));
-  const double merge = 3.0 * spec.radiusFraction * spec.referenceLength_mm();
-  RoughRun run;
-  run.got = test::topology(r.skeleton, merge);
-  run.want = test::topology(generator.centerline(), merge);
-  run.accuracy = test::measure(r.skeleton, generator, 1.5);
-  run.connectivity = test::check26Connected(r.raw, { 1, 1, 1 });
-  std::cout << "rough " << toString(shape) << " seed " << seed << ": mean " << run.accuracy.mean_mm
-            << " vox, p95 " << run.accuracy.p95_mm << " vox, coverage " << run.accuracy.coverage
-            << "\n";
-  return run;
+  return skeletonizePhantom(spec, 3.0);
 }
 
-void expectTopologyAndCoverage(const RoughRun& run)
+void expectTopologyAndCoverage(const PhantomRun& run)
 {
   EXPECT_EQ(run.got.endPoints, run.want.endPoints);
   EXPECT_EQ(run.got.bifurcations, run.want.bifurcations);
@@ -103,7 +112,7 @@ TEST(VoxelCodingSkeletonFilter, RoughWalledVesselsKeepTopologyAndAccuracy)
     { PhantomShape::Helix, PhantomShape::YBifurcation, PhantomShape::LoopNetwork })
   {
     SCOPED_TRACE(toString(shape));
-    const RoughRun run = skeletonizeRough(shape, 1);
+    const PhantomRun run = skeletonizeRough(shape, 1);
     expectTopologyAndCoverage(run);
     EXPECT_LE(run.accuracy.mean_mm, 0.35);
     EXPECT_LE(run.accuracy.p95_mm, 1.0);
@@ -121,7 +130,7 @@ TEST(VoxelCodingSkeletonFilter, RoughLoopNetworkMeetsTheTargetsAcrossWallSeeds)
   for (std::uint32_t seed = 1; seed <= 6; ++seed)
   {
     SCOPED_TRACE(seed);
-    const RoughRun run = skeletonizeRough(PhantomShape::LoopNetwork, seed);
+    const PhantomRun run = skeletonizeRough(PhantomShape::LoopNetwork, seed);
     expectTopologyAndCoverage(run);
     EXPECT_LE(run.accuracy.p95_mm, 1.0);
     EXPECT_LE(run.accuracy.mean_mm, 0.45);
@@ -175,19 +184,9 @@ TEST(VoxelCodingSkeletonFilter, NoisyRingsKeepTheirLoopOverNoiseSeeds)
         spec.dimensions = { 96, 96, 96 };
         spec.noiseStdDev = noise;
         spec.seed = seed;
-        PhantomGenerator generator(spec);
-        ASSERT_TRUE(generator.ok()) << generator.error();
-        auto image = test::phantomImage(generator);
-        const Result r = skeletonize(image, test::wallThreshold(spec));
-        const double merge = 1.5 * spec.radiusFraction * spec.referenceLength_mm();
-        const test::Topology t = test::topology(r.skeleton, merge);
-        const test::Accuracy a = test::measure(r.skeleton, generator, 1.5);
-        std::cout << toString(shape) << " noise " << noise << " seed " << seed << ": ends "
-                  << t.endPoints << " bifurcations " << t.bifurcations << " loops " << t.loops
-                  << ", mean " << a.mean_mm << " p95 " << a.p95_mm << " coverage " << a.coverage
-                  << "\n";
-        EXPECT_EQ(t.loops, 1);
-        EXPECT_GE(a.coverage, 0.98);
+        const PhantomRun run = skeletonizePhantom(spec, 1.5);
+        EXPECT_EQ(run.got.loops, 1);
+        EXPECT_GE(run.accuracy.coverage, 0.98);
       }
     }
   }
