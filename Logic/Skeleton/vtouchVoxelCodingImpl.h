@@ -443,6 +443,11 @@ struct VoxelCoder::Impl
     std::uint32_t to,
     double radius) const;
 
+  /// Adds junction `j` to `links` in both directions: (path << 32 | point) of the child's end
+  /// -> the parent's place, and back (the graph skeletonDistance() walks).
+  void linkJunction(const RawJunction& j,
+    std::unordered_multimap<std::uint64_t, std::pair<int, int>>& links) const;
+
   /// Length of the shortest way along the skeleton between two (path, point) places, with the
   /// junctions as `links` ((path << 32 | point) -> place, both directions); infinity when it is
   /// longer than `cutoff` (the search stops there: its cost follows the cutoff, not the skeleton).

@@ -177,6 +177,16 @@ double VoxelCoder::Impl::skeletonDistance(std::pair<int, int> from,
   return std::numeric_limits<double>::infinity();
 }
 
+void VoxelCoder::Impl::linkJunction(const RawJunction& j,
+  std::unordered_multimap<std::uint64_t, std::pair<int, int>>& links) const
+{
+  const std::pair<int, int> child{ j.childPath,
+    j.childTail ? static_cast<int>(out.paths[j.childPath].center_mm.size()) - 1 : 0 };
+  const std::pair<int, int> parent{ j.parentPath, j.parentPoint };
+  links.emplace(placeKey(child), parent);
+  links.emplace(placeKey(parent), child);
+}
+
 namespace
 {
 struct FreeEnd
@@ -273,14 +283,7 @@ void VoxelCoder::Impl::closeTracedLoops(std::size_t firstPath)
   const StageTimer timer{ *this, "loops" };
   // Junction links in both directions: (path, point) -> (path, point).
   std::unordered_multimap<std::uint64_t, std::pair<int, int>> links;
-  const auto link = [&](const RawJunction& j)
-  {
-    const std::pair<int, int> child{ j.childPath,
-      j.childTail ? static_cast<int>(out.paths[j.childPath].center_mm.size()) - 1 : 0 };
-    const std::pair<int, int> parent{ j.parentPath, j.parentPoint };
-    links.emplace(placeKey(child), parent);
-    links.emplace(placeKey(parent), child);
-  };
+  const auto link = [&](const RawJunction& j) { linkJunction(j, links); };
   for (const RawJunction& j : out.junctions)
   {
     link(j);
@@ -444,13 +447,7 @@ void VoxelCoder::Impl::joinFacingEnds(std::size_t firstPath)
     return;
   }
   std::unordered_multimap<std::uint64_t, std::pair<int, int>> links;
-  const auto link = [&](const RawJunction& j)
-  {
-    const std::pair<int, int> child{ j.childPath,
-      j.childTail ? static_cast<int>(out.paths[j.childPath].center_mm.size()) - 1 : 0 };
-    links.emplace(placeKey(child), std::pair<int, int>{ j.parentPath, j.parentPoint });
-    links.emplace(placeKey({ j.parentPath, j.parentPoint }), child);
-  };
+  const auto link = [&](const RawJunction& j) { linkJunction(j, links); };
   for (const RawJunction& j : out.junctions)
   {
     link(j);
