@@ -62,7 +62,63 @@ void PointerDevice::addWheelSteps(int steps)
 
 void PointerDevice::setButtons(std::uint32_t buttons)
 {
-  this->Buttons.store(buttons);
+  std::lock_guard<std::mutex> lock(this->HostMutex);
+  const std::uint32_t changed = buttons ^ this->HostButtons;
+  for (int b = 0; b < kButtonCount; ++b)
+  {
+    const std::uint32_t bit = 1u << b;
+    if (changed & bit)
+    {
+      // Counts, not only the state: a press and a release between two reads are both kept
+      // (issue 20: a click shorter than one tick was lost when only the state was kept).
+      std::atomic<std::uint32_t>& counter = (buttons & bit) ? this->Presses[b] : this->Releases[b];
+      counter.fetch_add(1, std::memory_order_release);
+    }
+  }
+  this->HostButtons = buttons;
+}
+
+std::uint32_t PointerDevice::pressCount(int button) const
+{
+  return (button >= 0 && button < kButtonCount)
+           ? this->Presses[button].load(std::memory_order_acquire)
+           : 0u;
+}
+
+std::uint32_t PointerDevice::deliveredPressCount(int button) const
+{
+  return (button >= 0 && button < kButtonCount)
+           ? this->DeliveredPresses[button].load(std::memory_order_acquire)
+           : 0u;
+}
+
+std::uint32_t PointerDevice::replayButtons()
+{
+  // The edges of one button alternate (press, release, press, ...). Each read moves the reported
+  // state by at most one edge toward the host's, so every latched press is seen by one read at
+  // least, and a double click between two reads reads down, up, down, up over four reads.
+  for (int b = 0; b < kButtonCount; ++b)
+  {
+    const std::uint32_t bit = 1u << b;
+    if (this->ReportedButtons & bit)
+    {
+      if (this->Releases[b].load(std::memory_order_acquire) != this->SeenReleases[b])
+      {
+        ++this->SeenReleases[b];
+        this->ReportedButtons &= ~bit;
+      }
+    }
+    else
+    {
+      const std::uint32_t delivered = this->DeliveredPresses[b].load(std::memory_order_relaxed);
+      if (this->Presses[b].load(std::memory_order_acquire) != delivered)
+      {
+        this->DeliveredPresses[b].store(delivered + 1, std::memory_order_release);
+        this->ReportedButtons |= bit;
+      }
+    }
+  }
+  return this->ReportedButtons;
 }
 
 void PointerDevice::recenter()
@@ -105,7 +161,6 @@ PointerDevice::HostInput PointerDevice::loadHost() const
     }
   }
   in.pressure = this->Modifier.load() ? 1.0 : this->WheelPressure.load();
-  in.buttons = this->Buttons.load();
   in.recenter = this->RecenterRequests.load();
   return in;
 }
@@ -116,6 +171,16 @@ DeviceStatus PointerDevice::open()
   this->Cursor_mm = in.pointer_mm;
   this->LastPointer_mm = in.pointer_mm;
   this->SeenRecenter = in.recenter;
+  {
+    // Edges latched before open() belong to no session: start from the host's current state.
+    std::lock_guard<std::mutex> lock(this->HostMutex);
+    this->ReportedButtons = this->HostButtons;
+    for (int b = 0; b < kButtonCount; ++b)
+    {
+      this->DeliveredPresses[b].store(this->Presses[b].load());
+      this->SeenReleases[b] = this->Releases[b].load();
+    }
+  }
   this->Force_N = Vec3{};
   this->Velocity.reset();
   this->CursorX.store(this->Cursor_mm.x);
@@ -177,7 +242,7 @@ DeviceStatus PointerDevice::read(DeviceState& state)
   s.timestamp_s = steadyNow_s();
   s.position_Device_mm = Vec3{ this->Cursor_mm.x, this->Cursor_mm.y, 0.0 };
   s.pressure = in.pressure;
-  s.buttons = in.buttons;
+  s.buttons = this->replayButtons();
   this->Velocity.add(s.timestamp_s, s.position_Device_mm);
   s.velocity_Device_mm_per_s = this->Velocity.velocity_mm_per_s();
   state = s;

@@ -49,8 +49,16 @@ public:
   void setModifierPressed(bool pressed);
   /// Mouse wheel: each step adds pressurePerWheelStep (negative steps remove), clamped to [0, 1].
   void addWheelSteps(int steps);
-  /// Mouse buttons, bit i for button i.
+  /// Mouse buttons, bit i for button i (i < kButtonCount). Every press and release edge is
+  /// latched and counted here, so a click shorter than one haptic tick is still seen by read():
+  /// read() replays the edges in order, one per read (a press and a release within one tick read
+  /// as "down" at one tick and "up" at the next).
   void setButtons(std::uint32_t buttons);
+  /// Presses of `button` seen by the host since construction (0 for buttons >= kButtonCount).
+  std::uint32_t pressCount(int button) const;
+  /// Presses of `button` delivered by read() so far (the rest are still latched).
+  std::uint32_t deliveredPressCount(int button) const;
+  static constexpr int kButtonCount = 8;
   /// Puts the cursor back under the pointer (e.g. when the pointer re-enters the view).
   void recenter();
   /// The cursor to draw, mm (device frame).
@@ -75,10 +83,11 @@ private:
   {
     Vec2 pointer_mm;
     double pressure = 0.0;
-    std::uint32_t buttons = 0;
     std::uint64_t recenter = 0;
   };
   HostInput loadHost() const;
+  /// Haptic thread: the button state to report, replaying at most one latched edge per button.
+  std::uint32_t replayButtons();
 
   PointerDeviceParameters Parameters;
   DeviceCapabilities Capabilities;
@@ -91,7 +100,10 @@ private:
   std::atomic<double> PointerX{ 0.0 }, PointerY{ 0.0 };
   std::atomic<double> WheelPressure{ 0.0 };
   std::atomic<bool> Modifier{ false };
-  std::atomic<std::uint32_t> Buttons{ 0 };
+  std::uint32_t HostButtons = 0; // under HostMutex: the host's last button state (edges)
+  std::atomic<std::uint32_t> Presses[kButtonCount] = {};
+  std::atomic<std::uint32_t> Releases[kButtonCount] = {};
+  std::atomic<std::uint32_t> DeliveredPresses[kButtonCount] = {};
   std::atomic<std::uint64_t> RecenterRequests{ 0 };
 
   // Haptic -> host.
@@ -103,6 +115,8 @@ private:
   Vec2 Cursor_mm;
   Vec2 LastPointer_mm;
   std::uint64_t SeenRecenter = 0;
+  std::uint32_t ReportedButtons = 0;
+  std::uint32_t SeenReleases[kButtonCount] = {};
   Vec3 Force_N;
   VelocityEstimator Velocity;
 };

@@ -56,6 +56,13 @@ struct HapticParameters
   std::uint32_t reindexButtonMask = 0x2;
   /// Buttons whose press returns from tracing to exploring. Default button 0 (mask 0x1).
   std::uint32_t releaseButtonMask = 0x1;
+  /// Contact (ContactGate, Yi & Hayward §3.2): the cursor must stay within the capture radius this
+  /// long before the agent is captured, s. A vessel crossed faster than 2 r / dwell does not take
+  /// the agent. 0 = the paper's immediate capture. Default 0.05 s.
+  double contactDwell_s = 0.05;
+  /// At start, contact waits until the cursor has been outside every capture radius (no capture
+  /// before any input). After a click it always does. Default true.
+  bool contactApproachAtStart = true;
 
   // --- tracing and smoothing ---
   double tracerDeadBand_px = 0.25;     ///< the agent stays still below this projection, px. 0.25

@@ -15,9 +15,16 @@ HapticPipeline::HapticPipeline()
   this->Laws[static_cast<int>(ForceLawId::None)] = nullptr;
 }
 
+void HapticPipeline::release() noexcept
+{
+  this->Trace.release();
+  this->Contact.disarm();
+}
+
 void HapticPipeline::reset() noexcept
 {
   this->Trace.release();
+  this->ContactNeedsReset = true;
   for (ForceLaw* law : this->Laws)
   {
     if (law)
@@ -59,6 +66,8 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Zones.saturateAbove = p.zoneSaturateAbove;
   this->Interpolator.maxRate_N_per_s = p.maxForceRate_N_per_s;
   this->Trace.deadBand_px = std::max(0.0, p.tracerDeadBand_px);
+  this->Contact.dwell_s = std::isfinite(p.contactDwell_s) ? std::max(0.0, p.contactDwell_s) : 0.05;
+  this->Contact.approachAtStart = p.contactApproachAtStart;
   this->Trace.directionHysteresis = std::isfinite(p.tracerDirectionHysteresis)
                                       ? std::clamp(p.tracerDirectionHysteresis, 0.0, 1.0)
                                       : 0.1;
@@ -101,6 +110,11 @@ Vec2 HapticPipeline::renderLaws(const ForceInput& fin,
 AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) noexcept
 {
   this->applyParameters(p);
+  if (this->ContactNeedsReset)
+  {
+    this->Contact.reset();
+    this->ContactNeedsReset = false;
+  }
   AgentState out;
   out.time_s = in.time_s;
   out.tick = ++this->Ticks;
@@ -149,18 +163,24 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
   this->LastButtons = dev.buttons;
   if (pressed & p.releaseButtonMask)
   {
-    this->Trace.release();
+    this->release(); // §3.2: a click returns to exploring, and stays there (ContactGate)
   }
   if (!vm || (this->Trace.state() == InteractionState::Tracing &&
                this->Trace.topologyId() != vm->topology().id()))
   {
-    this->Trace.release();
+    this->release();
   }
   if (vm)
   {
     if (this->Trace.state() == InteractionState::Exploring)
     {
-      this->Trace.tryContact(*vm, this->Cursor);
+      const bool near =
+        this->Cursor.isFinite() && vm->contactAt(static_cast<int>(std::floor(this->Cursor.x)),
+                                     static_cast<int>(std::floor(this->Cursor.y))) >= 0;
+      if (this->Contact.update(near, in.dt_s))
+      {
+        this->Trace.tryContact(*vm, this->Cursor);
+      }
     }
     else
     {

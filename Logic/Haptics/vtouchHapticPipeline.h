@@ -4,6 +4,7 @@
 
 #include "vtouchChangeOfHeightForceLaw.h"
 #include "vtouchConstraintProxyForceLaw.h"
+#include "vtouchContactGate.h"
 #include "vtouchForceInterpolator.h"
 #include "vtouchForceZones.h"
 #include "vtouchHapticParameters.h"
@@ -62,6 +63,7 @@ public:
   void zeroForce() noexcept;
 
   Tracer& tracer() { return this->Trace; }
+  const ContactGate& contactGate() const { return this->Contact; }
   const Tracer& tracer() const { return this->Trace; }
   const ForceLaw& law(ForceLawId id) const { return *this->Laws[static_cast<int>(id)]; }
   ForceLaw& law(ForceLawId id) { return *this->Laws[static_cast<int>(id)]; }
@@ -77,7 +79,11 @@ private:
   void applyParameters(const HapticParameters& p);
   Vec2 renderLaws(const ForceInput& fin, const HapticParameters& p, ForceRequest& req) noexcept;
 
+  void release() noexcept;
+
   Tracer Trace;
+  ContactGate Contact;
+  bool ContactNeedsReset = true;
   LdgfForceLaw Ldgf;
   ChangeOfHeightForceLaw ChangeOfHeight;
   LateralGradientForceLaw Lateral;

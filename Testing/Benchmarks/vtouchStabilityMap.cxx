@@ -88,7 +88,7 @@ Cell couplerCell(double stiffness, double rate, double seconds)
   safety.maxSlewRate_N_per_s = 1e12;
   safety.maxTickInterval_s = 1.0;
   session.setSafetyParameters(safety);
-  HapticParameters p;
+  HapticParameters p = immediateContact(); // the resting hand starts on the vessel
   p.forceLaw = ForceLawId::ConstraintProxy;
   p.proxyStiffness_N_per_m = stiffness;
   p.maxForceRate_N_per_s = 1e12;
@@ -183,7 +183,7 @@ Cell cuspCell(const CuspScene& scene,
   safety.maxSlewRate_N_per_s = 1e12;
   safety.maxTickInterval_s = 1.0;
   session.setSafetyParameters(safety);
-  HapticParameters p;
+  HapticParameters p = immediateContact(); // the hand starts on the vessel
   p.forceLaw = ForceLawId::Ldgf;
   set(p);
   session.setParameters(p);

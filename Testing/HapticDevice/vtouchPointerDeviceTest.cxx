@@ -102,6 +102,79 @@ TEST(PointerDevice, RecentersCursorUnderPointerWhenAsked)
   EXPECT_DOUBLE_EQ(s.position_Device_mm.x, 10.0);
 }
 
+TEST(PointerDevice, DeliversQuickClickWhenPressAndReleaseFallWithinOneTick)
+{
+  // Issue 20: an instant click (press and release between two haptic reads) was lost.
+  PointerDevice device;
+  ASSERT_EQ(device.open(), DeviceStatus::Ok);
+  DeviceState s;
+  device.read(s);
+  EXPECT_EQ(s.buttons, 0u);
+  device.setButtons(0x1);
+  device.setButtons(0x0);
+  EXPECT_EQ(device.pressCount(0), 1u);
+  EXPECT_EQ(device.deliveredPressCount(0), 0u);
+  device.read(s);
+  EXPECT_EQ(s.buttons, 0x1u); // the press, latched
+  EXPECT_EQ(device.deliveredPressCount(0), 1u);
+  device.read(s);
+  EXPECT_EQ(s.buttons, 0x0u); // then the release
+  device.read(s);
+  EXPECT_EQ(s.buttons, 0x0u);
+}
+
+TEST(PointerDevice, ReplaysEveryEdgeWhenSeveralClicksFallWithinOneTick)
+{
+  PointerDevice device;
+  ASSERT_EQ(device.open(), DeviceStatus::Ok);
+  DeviceState s;
+  // A double click of button 0 and a click of button 2, all between two reads.
+  for (int k = 0; k < 2; ++k)
+  {
+    device.setButtons(0x1);
+    device.setButtons(0x0);
+  }
+  device.setButtons(0x4);
+  device.setButtons(0x0);
+  EXPECT_EQ(device.pressCount(0), 2u);
+  EXPECT_EQ(device.pressCount(2), 1u);
+  std::uint32_t seen[5] = {};
+  int pressEdges0 = 0;
+  std::uint32_t previous = 0;
+  for (std::uint32_t& b : seen)
+  {
+    device.read(s);
+    b = s.buttons;
+    pressEdges0 += ((b & 0x1u) && !(previous & 0x1u)) ? 1 : 0;
+    previous = b;
+  }
+  EXPECT_EQ(seen[0], 0x5u); // both buttons' first press
+  EXPECT_EQ(seen[1], 0x0u); // both releases
+  EXPECT_EQ(seen[2], 0x1u); // the second press of button 0
+  EXPECT_EQ(seen[3], 0x0u);
+  EXPECT_EQ(seen[4], 0x0u);
+  EXPECT_EQ(pressEdges0, 2);
+  EXPECT_EQ(device.deliveredPressCount(0), 2u);
+  EXPECT_EQ(device.pressCount(99), 0u);
+}
+
+TEST(PointerDevice, ReportsHeldButtonWhileHeld)
+{
+  PointerDevice device;
+  device.setButtons(0x2); // held before open: reported as held, not as a new click
+  ASSERT_EQ(device.open(), DeviceStatus::Ok);
+  DeviceState s;
+  for (int k = 0; k < 3; ++k)
+  {
+    device.read(s);
+    EXPECT_EQ(s.buttons, 0x2u);
+  }
+  EXPECT_EQ(device.deliveredPressCount(1), device.pressCount(1));
+  device.setButtons(0x0);
+  device.read(s);
+  EXPECT_EQ(s.buttons, 0x0u);
+}
+
 TEST(PointerDevice, StaysConsistentWhenHostFeedsFromAnotherThread)
 {
   PointerDevice device;
@@ -115,6 +188,10 @@ TEST(PointerDevice, StaysConsistentWhenHostFeedsFromAnotherThread)
         // x == y always: a torn read would show x != y.
         device.setPointerPosition(Vec2{ 0.001 * (i % 1000), 0.001 * (i % 1000) });
         device.addWheelSteps(i % 2 ? 1 : -1);
+        if (i < 2000)
+        {
+          device.setButtons(i % 2 ? 0x1u : 0x0u); // 1000 clicks, latched across the reads
+        }
       }
     });
   DeviceState s;
@@ -127,6 +204,12 @@ TEST(PointerDevice, StaysConsistentWhenHostFeedsFromAnotherThread)
   }
   stop = true;
   host.join();
+  // Every latched press is eventually delivered once the host stops clicking.
+  for (int i = 0; i < 4000 && device.deliveredPressCount(0) != device.pressCount(0); ++i)
+  {
+    device.read(s);
+  }
+  EXPECT_EQ(device.deliveredPressCount(0), device.pressCount(0));
 }
 
 } // namespace

@@ -58,7 +58,7 @@ CouplerRun runCoupler(double stiffness,
     safety.maxTickInterval_s = 1.0;
   }
   session.setSafetyParameters(safety);
-  HapticParameters p;
+  HapticParameters p = immediateContact(); // the resting hand starts on the vessel
   p.forceLaw = ForceLawId::ConstraintProxy;
   p.proxyStiffness_N_per_m = stiffness;
   if (damping >= 0.0)

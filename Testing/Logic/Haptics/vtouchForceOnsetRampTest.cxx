@@ -94,6 +94,7 @@ TEST(HapticSession, StartOnASlopeRampsTheForceInSmoothly)
   session.setCamera(topCamera({ 0, 0, 10 }));
   auto device = std::make_shared<RestingDevice>();
   session.setDevice(device);
+  session.setParameters(immediateContact(session.parameters())); // starts on the vessel
   ForceSafetyParameters safety;
   safety.maxSlewRate_N_per_s = 1e6; // isolate the ramp from the slew limit
   session.setSafetyParameters(safety);
@@ -142,6 +143,7 @@ TEST(HapticSession, ClearedFaultReengagesThroughTheRamp)
   session.setCamera(topCamera({ 0, 0, 10 }));
   auto device = std::make_shared<RestingDevice>();
   session.setDevice(device);
+  session.setParameters(immediateContact(session.parameters())); // starts on the vessel
   ForceSafetyParameters safety;
   safety.maxSlewRate_N_per_s = 1e6;
   session.setSafetyParameters(safety);

@@ -195,6 +195,7 @@ TEST(HapticSession, DeviceFaultCommandsZeroForceThenLatches)
   session.setCamera(topCamera({ 0, 0, 10 }));
   auto device = std::make_shared<FailingDevice>();
   session.setDevice(device);
+  session.setParameters(immediateContact(session.parameters())); // starts on the vessel
   for (int k = 0; k < 20; ++k)
   {
     session.tick(k * 0.001, 0.001);

@@ -1,5 +1,6 @@
 #include "vtouchHapticPipeline.h"
 #include "vtouchHapticsTestUtilities.h"
+#include "vtouchPointerDevice.h"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +16,7 @@ struct PipelineRig
 {
   std::shared_ptr<ViewModel> view;
   HapticPipeline pipeline;
-  HapticParameters params;
+  HapticParameters params = immediateContact(); // most tests start on the vessel
   DeviceCapabilities caps;
   DeviceState device;
   double time = 0.0;
@@ -268,20 +269,123 @@ TEST(HapticPipeline, ZoomScalesCursorMotionButKeepsFeltSlope)
   }
 }
 
-TEST(HapticPipeline, ButtonClickReturnsToExploring)
+TEST(HapticPipeline, ButtonClickReturnsToExploringWithStillHand)
 {
+  // Yi & Hayward §3.2: "a button click returns the user to the exploration state". The hand does
+  // not move: the cursor stays within the capture radius, and the agent must not be recaptured.
   PipelineRig rig;
+  rig.params = HapticParameters{}; // the product's contact rule (approach + dwell)
   rig.view = buildView(straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25), topCamera({ 0, 0, 0 }));
-  ASSERT_EQ(rig.step().state, InteractionState::Tracing);
+  // The cursor starts at the centre, on the vessel: no capture before any input.
+  for (int k = 0; k < 200; ++k)
+  {
+    ASSERT_EQ(rig.step().state, InteractionState::Exploring) << k;
+  }
+  // Approach from 10 mm (40 px) below, then rest on the vessel: captured after the dwell.
+  rig.device.position_Device_mm = { 0, -10, 0 };
+  EXPECT_EQ(rig.step().state, InteractionState::Exploring);
+  rig.device.position_Device_mm = { 0, 0, 0 };
+  int ticks = 0;
+  while (rig.step().state == InteractionState::Exploring && ticks < 1000)
+  {
+    ++ticks;
+  }
+  EXPECT_EQ(ticks + 1, static_cast<int>(std::lround(rig.params.contactDwell_s / 0.001)));
+  // Click (one tick down, then up) with the hand still: exploring, and it stays so.
   rig.device.buttons = rig.params.releaseButtonMask;
-  rig.device.position_Device_mm = { 0, 10, 0 }; // and move away while clicking
   EXPECT_EQ(rig.step().state, InteractionState::Exploring);
-  // Holding the button does not click again; away from the vessel it stays exploring.
+  rig.device.buttons = 0;
+  for (int k = 0; k < 1000; ++k)
+  {
+    const AgentState s = rig.step();
+    ASSERT_EQ(s.state, InteractionState::Exploring) << k;
+    ASSERT_EQ(s.force_N.norm(), 0.0) << k;
+  }
+  // Holding the button does not click again; leaving and coming back captures again.
+  rig.device.position_Device_mm = { 0, 10, 0 };
   EXPECT_EQ(rig.step().state, InteractionState::Exploring);
-  EXPECT_EQ(rig.step().force_N.norm(), 0.0);
+  rig.device.position_Device_mm = { 0, 0, 0 };
+  AgentState s;
+  for (int k = 0; k < 60; ++k)
+  {
+    s = rig.step();
+  }
+  EXPECT_EQ(s.state, InteractionState::Tracing);
   // Without any view model the pipeline explores with zero force.
   rig.view.reset();
   EXPECT_EQ(rig.step().state, InteractionState::Exploring);
+}
+
+TEST(HapticPipeline, QuickPointerClickReleasesTracing)
+{
+  // Issue 20: a press and a release between two ticks (an instant click) must still release.
+  PipelineRig rig;
+  rig.view = buildView(straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25), topCamera({ 0, 0, 0 }));
+  PointerDevice pointer;
+  ASSERT_EQ(pointer.open(), DeviceStatus::Ok);
+  auto tick = [&]()
+  {
+    EXPECT_EQ(pointer.read(rig.device), DeviceStatus::Ok);
+    return rig.step();
+  };
+  ASSERT_EQ(tick().state, InteractionState::Tracing);
+  for (int click = 0; click < 4; ++click)
+  {
+    pointer.setButtons(0x1);
+    pointer.setButtons(0x0);
+    EXPECT_EQ(tick().state, InteractionState::Exploring) << click;
+    EXPECT_EQ(tick().state, InteractionState::Exploring) << click;
+    // Back onto the vessel from 40 px away (immediate contact in this rig).
+    pointer.setPointerPosition({ 0.0, 10.0 });
+    EXPECT_EQ(tick().state, InteractionState::Exploring) << click;
+    pointer.setPointerPosition({ 0.0, 0.0 });
+    EXPECT_EQ(tick().state, InteractionState::Tracing) << click;
+  }
+  EXPECT_EQ(pointer.deliveredPressCount(0), 4u);
+}
+
+TEST(HapticPipeline, CrossedVesselDoesNotCaptureOnTheWayToAnother)
+{
+  // Issue 20: the agent was captured by the first vessel crossed on the way to another. Two
+  // parallel vessels 60 px apart; the cursor sweeps across the first at 1 px/tick (1000 px/s,
+  // 24 px of capture zone crossed in 24 ms < the 50 ms dwell) and stops on the second.
+  PipelineRig rig;
+  rig.params = HapticParameters{};
+  QSkeleton two = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  const QSkeleton second = straightLine({ -20, 15, 0 }, { 20, 15, 0 }, 0.25);
+  two.paths.push_back(second.paths[0]);
+  rig.view = buildView(two, topCamera({ 0, 0, 0 }));
+  rig.step();                                    // the cursor starts at the centre, on the first
+  rig.device.position_Device_mm = { 0, -10, 0 }; // then 40 px below it
+  rig.step();
+  AgentState s;
+  for (int k = 1; k <= 100; ++k) // 100 px up, 0.25 mm per tick
+  {
+    rig.device.position_Device_mm = { 0, -10 + 0.25 * k, 0 };
+    s = rig.step();
+    ASSERT_EQ(s.state, InteractionState::Exploring) << k;
+  }
+  for (int k = 0; k < 60; ++k) // rests on the second vessel
+  {
+    s = rig.step();
+  }
+  EXPECT_EQ(s.state, InteractionState::Tracing);
+  EXPECT_EQ(s.path, 1);
+  // The same sweep at 0.1 px/tick (100 px/s) is an approach to the first vessel: it captures.
+  PipelineRig slow;
+  slow.params = HapticParameters{};
+  slow.view = rig.view;
+  slow.step();
+  slow.device.position_Device_mm = { 0, -10, 0 };
+  slow.step();
+  int k = 0;
+  for (; k < 1000 && s.path != 0; ++k)
+  {
+    slow.device.position_Device_mm = { 0, -10 + 0.025 * k, 0 };
+    s = slow.step();
+  }
+  EXPECT_EQ(s.state, InteractionState::Tracing);
+  EXPECT_EQ(s.path, 0);
 }
 
 TEST(HapticPipeline, ViewChangeWhileTracingKeepsAgentAndBoundsForceStep)

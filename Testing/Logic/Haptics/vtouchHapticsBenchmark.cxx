@@ -99,7 +99,7 @@ void BM_PipelineTick_1M(benchmark::State& state)
   ViewModelBuilder builder;
   auto vm = builder.build(topo, topCamera({ 0, 0, 0 }, 0.25));
   HapticPipeline pipeline;
-  HapticParameters params;
+  HapticParameters params = immediateContact(); // starts on the vessel
   params.forceLaw = static_cast<ForceLawId>(state.range(0));
   DeviceCapabilities caps;
   caps.maxStiffness_N_per_m = 1000.0;

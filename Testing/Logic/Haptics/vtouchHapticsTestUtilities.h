@@ -2,6 +2,7 @@
 // seeded).
 #pragma once
 
+#include "vtouchHapticParameters.h"
 #include "vtouchHostCamera.h"
 #include "vtouchQSkeleton.h"
 #include "vtouchSceneTopology.h"
@@ -108,6 +109,16 @@ inline double distanceToGraph_mm(const SceneTopology& topo, const Vec3& p)
     }
   }
   return best;
+}
+
+/// The paper's contact rule (Yi & Hayward §3.2: proximity alone captures), for tests whose scene
+/// starts with the cursor on a vessel and that measure something else than contact (forces, onset,
+/// faults). The product's default also asks for an approach and a dwell (ContactGate).
+inline HapticParameters immediateContact(HapticParameters p = HapticParameters{})
+{
+  p.contactDwell_s = 0.0;
+  p.contactApproachAtStart = false;
+  return p;
 }
 
 } // namespace testing

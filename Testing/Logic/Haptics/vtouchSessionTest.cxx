@@ -261,6 +261,7 @@ TEST(HapticSession, RendersHelixSlopeWithin2PercentAt1kHz)
   session.setSafetyParameters(safety);
   session.setForceZones(1.0, 0.05, 0.5);
   Vec2 start;
+  session.setParameters(immediateContact(session.parameters())); // starts on the vessel
   camera.eyeToScreen(
     camera.worldToEye(phantom.centerline().paths[0].points[0].position_World_mm), start);
   session.pipeline().setCursor_px(start);
