@@ -39,7 +39,10 @@ struct DeviceCapabilities
   double maxStiffness_N_per_m = 0.0;      ///< largest stable stiffness at 1 kHz
   double maxUpdateRate_Hz = 1000.0;       ///< fastest useful write rate
   bool hasPressure = false;               ///< a pressure or z input feeds the force zones
-  int buttonCount = 0;                    ///< number of buttons reported in DeviceState::buttons
+  /// Smallest position change the sensor resolves (encoder count, quantization or noise floor),
+  /// mm; 0 when unknown. Sets z_max of the change-of-height estimate (Hayward & Yi, App. A).
+  double positionResolution_mm = 0.0;
+  int buttonCount = 0; ///< number of buttons reported in DeviceState::buttons
 };
 
 /// One timestamped sample of the device, in the device frame.

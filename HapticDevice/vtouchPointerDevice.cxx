@@ -32,6 +32,7 @@ PointerDevice::PointerDevice(const PointerDeviceParameters& parameters)
   this->Capabilities.maxStiffness_N_per_m = 1000.0;
   this->Capabilities.maxUpdateRate_Hz = 10000.0;
   this->Capabilities.hasPressure = true;
+  this->Capabilities.positionResolution_mm = parameters.positionResolution_mm;
   this->Capabilities.buttonCount = 3;
 }
 

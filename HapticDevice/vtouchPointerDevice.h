@@ -32,6 +32,9 @@ struct PointerDeviceParameters
   double pressurePerWheelStep = 0.1;
   /// Virtual force limit reported in the capabilities, N. Default 3.
   double maxContinuousForce_N = 3.0;
+  /// Position resolution reported in the capabilities, mm: one screen pixel of the mouse at the
+  /// view binding's default 4 px/mm. Default 0.25 mm.
+  double positionResolution_mm = 0.25;
 };
 
 /// The host (GUI thread) feeds the mouse; the haptic thread reads the displayed cursor and writes

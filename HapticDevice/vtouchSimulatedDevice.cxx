@@ -77,6 +77,11 @@ DeviceStatus SimulatedDevice::open()
   caps.maxUpdateRate_Hz = p.maxUpdateRate_Hz;
   caps.hasPressure = true;
   caps.buttonCount = 2;
+  // The sensor's resolution: its quantization step, or its peak noise (five standard deviations,
+  // exceeded about once in two million samples), or a 5 um encoder (a PenCat/Phantom-class
+  // stylus) when the simulated sensor is ideal.
+  const double sensed_mm = std::max(p.quantization_mm, 5.0 * p.noiseStdDev_mm);
+  caps.positionResolution_mm = sensed_mm > 0.0 ? sensed_mm : 0.005;
   this->Capabilities = caps;
 
   this->Time_s = 0.0;

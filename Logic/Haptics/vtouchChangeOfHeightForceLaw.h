@@ -1,4 +1,5 @@
-// Hayward & Yi's "change of height" force, their eq. 3, with the robust motion estimate mu.
+// Hayward & Yi's "change of height" force, their eq. 3, with the robust estimate of mu of their
+// Appendix A (eqs. 8-9), exactly as written.
 #pragma once
 
 #include "vtouchForceLaw.h"
@@ -6,40 +7,53 @@
 namespace vtouch
 {
 
-/// f = -k * (dh/dl) * mu, with h the height toward the viewer and mu the direction of motion.
-/// With our depth z (= -h, positive away from the viewer) and the slope s = dz/(dl + lambda) toward
-/// increasing index along eta, the height change per unit motion along mu is -s (eta . mu), so
-///   f = k(P) * s * (eta . mu) * mu.
-/// For a hand moving steadily along the vessel (|mu| = 1) this equals LDGF; for a hand at rest it
-/// is zero, which is the point of the law.
+/// Eq. 3: f = -k (dh/dl) mu, with h the height (toward the viewer), l the hand's path and mu the
+/// direction of motion. For the tracing agent the hand's projection on the screen tangent eta moves
+/// the agent (Yi & Hayward §3.2.1), so per unit hand travel in the direction u = mu / |mu| the
+/// depth z (= -h, positive away from the viewer) changes by s (eta . u), with the stencil slope
+/// s = dz / (|dl| + lambda) toward increasing index (Yi & Hayward eq. 2). Hence
+///   f = k(P) s (eta . u) mu,   u = mu / |mu|.
+/// dh/dl is a property of the path alone (it does not depend on |mu|); the force scales with
+/// |mu| once, not |mu|^2, and equals LDGF when the hand moves along the vessel (|mu| = 1).
 ///
-/// Robust mu (our reading of Appendix A): a motion window W accumulates the hand displacement and
-/// forgets it with time constant `forgetTime_s`; its length is saturated at z_max:
-///   W_k = exp(-dt/T) W_{k-1} + dx_k;  if |W_k| > z_max: W_k = z_max W_k / |W_k|;  mu = W_k /
-///   z_max.
-/// A still hand gives mu -> 0 (no spurious force); sensor noise of amplitude sigma moves W by a
-/// random walk that stays far below z_max, so a barely moving hand gets a proportionally small
-/// force; a deliberate motion saturates |mu| at 1 within z_max of travel.
+/// Appendix A, eqs. 8-9: a point W trails the measured position P by at most z_max:
+///   W_k = P_k - z_max (P_k - W_{k-1}) / |P_k - W_{k-1}|   if |P_k - W_{k-1}| > z_max,
+///   W_k = W_{k-1}                                         otherwise;
+///   mu_k = (P_k - W_k) / z_max.
+/// No division or difference of small noisy quantities: mu is defined at rest (it keeps the last
+/// direction of motion, so a resting hand keeps feeling the slope it was moving on, as the paper
+/// intends), a hand at any speed gets |mu| = 1 once it has moved z_max, sensor noise or
+/// quantization whose excursions stay below z_max leaves mu unchanged, and a reversal turns mu
+/// continuously through zero over 2 z_max of travel (the force passes through zero: no flip). z_max
+/// is "set according to the resolution of a particular device": zMaxPerResolution counts of the
+/// device's positionResolution_mm. A zero force at rest is not this law's business: it comes from
+/// the force zones (k(P) = 0 for a lifted stylus, or the idle gate of devices without pressure).
 class ChangeOfHeightForceLaw final : public ForceLaw
 {
 public:
-  /// Regularization lambda, mm of screen arc length (as LDGF). Default 0.005 mm.
+  /// Regularization lambda, mm of screen arc length (as LDGF, Yi & Hayward §4.1). Default 0.005 mm.
   double lambda_mm = 0.005;
-  /// Saturation length of the motion window, mm of hand travel. Default 1 mm.
-  double zMax_mm = 1.0;
-  /// Forgetting time constant of the motion window, s. Default 0.1 s (a hand slower than
-  /// z_max / T = 10 mm/s gets a proportionally reduced force).
-  double forgetTime_s = 0.1;
+  /// z_max, mm of hand travel; 0 (default) = zMaxPerResolution x the device's position resolution.
+  double zMax_mm = 0.0;
+  /// z_max in device resolution counts when zMax_mm is 0. Default 2 (a reading dithering by one
+  /// count never moves W).
+  double zMaxPerResolution = 2.0;
+  /// z_max when the device reports no resolution, mm. Default 0.02 mm.
+  double zMaxFallback_mm = 0.02;
 
   ForceLawId id() const override { return ForceLawId::ChangeOfHeight; }
-  void reset() noexcept override { this->Window = {}; }
+  void reset() noexcept override;
   Vec2 compute(const ForceInput& in, ForceRequest& request) noexcept override;
 
-  /// The current mu (|mu| <= 1), device plane.
+  /// The current mu (eq. 9, |mu| <= 1), device plane.
   Vec2 mu() const;
+  /// The z_max in use for `capabilities` (may be null), mm.
+  double zMaxFor(const DeviceCapabilities* capabilities) const;
 
 private:
-  Vec2 Window;
+  Vec2 Position; // P: the hand, integrated from its per-tick displacement, device mm
+  Vec2 Trail;    // W of eq. 8
+  double ZMax_mm = 0.02;
 };
 
 } // namespace vtouch

@@ -21,8 +21,10 @@ struct HapticParameters
   double ldgfLambda_mm = 0.005; ///< LDGF lambda, mm. Default 0.005 mm
   double cohLambda_mm = 0.005;  ///< change-of-height lambda, mm. Default 0.005 mm
   /// (the dz/dl stencil window is a scene setting: HapticSession::setSlopeWindow_mm, default 1 mm)
-  double cohZMax_mm = 1.0;      ///< motion window saturation z_max, mm. Default 1 mm
-  double cohForgetTime_s = 0.1; ///< motion window forgetting time, s. Default 0.1 s
+  /// Change of height z_max (Hayward & Yi eq. 8), mm; 0 (default) = cohZMaxPerResolution x the
+  /// device's position resolution ("set according to the resolution of a particular device").
+  double cohZMax_mm = 0.0;
+  double cohZMaxPerResolution = 2.0; ///< z_max in device resolution counts. Default 2
   // --- lateral gradient baseline ---
   double lateralProbe_px = 2.0; ///< central difference half-width, px. Default 2 px
   // --- constraint proxy (Ikits) ---

@@ -49,7 +49,7 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Ldgf.lambda_mm = p.ldgfLambda_mm;
   this->ChangeOfHeight.lambda_mm = p.cohLambda_mm;
   this->ChangeOfHeight.zMax_mm = p.cohZMax_mm;
-  this->ChangeOfHeight.forgetTime_s = p.cohForgetTime_s;
+  this->ChangeOfHeight.zMaxPerResolution = p.cohZMaxPerResolution;
   this->Lateral.probe_px = p.lateralProbe_px;
   this->Proxy.stiffness_N_per_m = p.proxyStiffness_N_per_m;
   this->Proxy.damping_N_s_per_m = p.proxyDamping_N_s_per_m;

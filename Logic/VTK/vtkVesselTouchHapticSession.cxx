@@ -166,8 +166,8 @@ void vtkVesselTouchHapticSession::PushParameters()
   p.crossfade_s = this->Crossfade;
   p.ldgfLambda_mm = this->LdgfLambda;
   p.cohLambda_mm = this->ChangeOfHeightLambda;
-  p.cohZMax_mm = this->ChangeOfHeightZMax;
-  p.cohForgetTime_s = this->ChangeOfHeightForgetTime;
+  p.cohZMax_mm = this->ChangeOfHeightZMax; // 0: from the device's resolution
+  // ChangeOfHeightForgetTime is ignored: Hayward & Yi's eqs. 8-9 have no forgetting factor.
   p.lateralProbe_px = this->LateralProbe;
   p.proxyStiffness_N_per_m = this->ProxyStiffness;
   p.proxyDamping_N_s_per_m = this->ProxyDamping;

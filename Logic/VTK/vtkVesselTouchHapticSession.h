@@ -294,8 +294,8 @@ private:
   int ForceLaw = 0;
   double LdgfLambda = 0.005;
   double ChangeOfHeightLambda = 0.005;
-  double ChangeOfHeightZMax = 1.0;
-  double ChangeOfHeightForgetTime = 0.1;
+  double ChangeOfHeightZMax = 0.0;       // 0: 2 counts of the device's position resolution
+  double ChangeOfHeightForgetTime = 0.1; // ignored (eqs. 8-9 have none); old state files set it
   double LateralProbe = 2.0;
   double ProxyStiffness = 200.0;
   double ProxyDamping = 0.1;

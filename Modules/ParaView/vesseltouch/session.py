@@ -282,8 +282,9 @@ class HapticSession(object):
                     tangent_drag=None, snap_drag=None):
         """'LDGF', 'ChangeOfHeight', 'LateralGradient', 'ConstraintProxy' or 'None', with the
         law's parameters: ``k`` (N, the force-zone gain k(P) in the saturation zone),
-        ``lambda_mm`` (LDGF / change of height), ``z_max_mm``, ``forget_time_s`` (change of
-        height), ``probe_px`` (lateral gradient), ``k_c`` (N/m), ``b_c`` (N s/m), ``tau_t``,
+        ``lambda_mm`` (LDGF / change of height), ``z_max_mm`` (change of height, Hayward & Yi
+        eq. 8; 0 = two counts of the device's resolution; ``forget_time_s`` is ignored: eqs. 8-9
+        have no forgetting factor), ``probe_px`` (lateral gradient), ``k_c`` (N/m), ``b_c`` (N s/m), ``tau_t``,
         ``snap_N`` (N), ``tangent_drag``, ``snap_drag`` (constraint proxy). Switching is
         crossfaded (no force jump)."""
         try:

@@ -91,66 +91,185 @@ TEST(LdgfForceLaw, PushesBackWhereVesselRisesTowardViewer)
   EXPECT_EQ(law.compute(in, req).norm(), 0.0);
 }
 
-TEST(ChangeOfHeightForceLaw, NoForceWhenHandAtRest)
+/// Hayward & Yi, Appendix A, eqs. 8-9, written out independently of the law.
+struct AppendixA
 {
-  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 20 }, 0.25);
-  auto vm = buildView(s, topCamera({ 0, 0, 10 }));
+  double zMax = 0.01;
+  Vec2 P;
+  Vec2 W;
+  Vec2 step(const Vec2& delta)
+  {
+    P = P + delta;
+    const Vec2 d = P - W;
+    if (d.norm() > zMax)
+    {
+      W = P - d * (zMax / d.norm());
+    }
+    return (P - W) * (1.0 / zMax);
+  }
+};
+
+/// A rising line (dz/dl = 0.5 along +x), the agent on it, a device of 5 um resolution.
+struct CohRig
+{
+  std::shared_ptr<ViewModel> vm =
+    buildView(straightLine({ -20, 0, 0 }, { 20, 0, 20 }, 0.25), topCamera({ 0, 0, 10 }));
   Tracer tracer;
-  ForceInput in = tracingInput(*vm, px(0, 0), tracer);
+  DeviceCapabilities caps;
+  ForceInput in;
   ChangeOfHeightForceLaw law;
   ForceRequest req;
-  for (int k = 0; k < 1000; ++k)
+  CohRig()
   {
-    ASSERT_EQ(law.compute(in, req).norm(), 0.0);
+    caps.positionResolution_mm = 0.005;
+    in = tracingInput(*vm, px(0, 0), tracer);
+    in.capabilities = &caps;
   }
-  // A resting hand with sensor noise (sigma 5 um, seeded): a small fraction of the slope force.
-  std::mt19937 rng(3);
-  std::normal_distribution<double> noise(0.0, 0.005);
-  Vec2 previous{ noise(rng), noise(rng) };
-  double worst = 0.0;
+  Vec2 ldgf() const
+  {
+    return LdgfForceLaw::evaluate(1.0, in.agent.dz_mm, in.agent.dl_mm, in.agent.eta, law.lambda_mm);
+  }
+  Vec2 move(const Vec2& delta_mm)
+  {
+    in.handDelta_Device_mm = delta_mm;
+    return law.compute(in, req);
+  }
+};
+
+TEST(ChangeOfHeightForceLaw, MuIsAppendixAEquations8And9)
+{
+  CohRig rig;
+  EXPECT_DOUBLE_EQ(rig.law.zMaxFor(&rig.caps), 0.01); // two counts of the 5 um resolution
+  EXPECT_DOUBLE_EQ(rig.law.zMaxFor(nullptr), rig.law.zMaxFallback_mm);
+  AppendixA reference;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> step(0.0, 0.004);
   for (int k = 0; k < 5000; ++k)
   {
-    const Vec2 p{ noise(rng), noise(rng) };
-    in.handDelta_Device_mm = p - previous;
-    previous = p;
-    worst = std::max(worst, law.compute(in, req).norm());
+    const Vec2 delta{ step(rng) + 0.001, step(rng) };
+    rig.move(delta);
+    const Vec2 mu = reference.step(delta);
+    ASSERT_NEAR((rig.law.mu() - mu).norm(), 0.0, 1e-9) << k;
+    ASSERT_LE(rig.law.mu().norm(), 1.0 + 1e-12) << k;
   }
-  const double ldgf = 0.5;
-  EXPECT_LT(worst, 0.05 * ldgf);
 }
 
-TEST(ChangeOfHeightForceLaw, EqualsLdgfForSteadyMotionAndFadesWhenHandStops)
+TEST(ChangeOfHeightForceLaw, NoForceBeforeTheHandHasMoved)
 {
-  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 20 }, 0.25);
-  auto vm = buildView(s, topCamera({ 0, 0, 10 }));
-  Tracer tracer;
-  ForceInput in = tracingInput(*vm, px(0, 0), tracer);
-  ChangeOfHeightForceLaw law;
-  ForceRequest req;
+  CohRig rig;
+  for (int k = 0; k < 1000; ++k)
+  {
+    ASSERT_EQ(rig.move({}).norm(), 0.0); // mu = 0: no direction of motion is known yet
+  }
+}
+
+TEST(ChangeOfHeightForceLaw, EqualsLdgfAtAnyHandSpeedOnceMoved)
+{
+  // Eq. 3 has no speed in it: 1 mm/s and 100 mm/s along the vessel feel the same slope (the old
+  // forgetting factor gave 10 % of it at 1 mm/s).
+  for (double speed_mm_per_s : { 1.0, 10.0, 100.0 })
+  {
+    CohRig rig;
+    Vec2 f;
+    for (int k = 0; k < 100; ++k) // 0.1 s
+    {
+      f = rig.move({ speed_mm_per_s * 0.001, 0.0 });
+    }
+    EXPECT_NEAR(rig.law.mu().x, 1.0, 1e-12) << speed_mm_per_s;
+    EXPECT_NEAR((f - rig.ldgf()).norm(), 0.0, 1e-12) << speed_mm_per_s;
+    // Moving back (-x) over the same slope: the same (gravity-like) force, as LDGF.
+    for (int k = 0; k < 100; ++k)
+    {
+      f = rig.move({ -speed_mm_per_s * 0.001, 0.0 });
+    }
+    EXPECT_NEAR((f - rig.ldgf()).norm(), 0.0, 1e-12) << speed_mm_per_s;
+    // Across the vessel (+y) the slope along the motion is zero: no force. W pursues P like a
+    // tractrix: the angle of mu to +y shrinks as 2 tan^-1(e^(-travel / z_max)), 10 z_max here.
+    for (int k = 0; k < 100; ++k)
+    {
+      f = rig.move({ 0.0, speed_mm_per_s * 0.001 });
+    }
+    EXPECT_LT(f.norm(), 4.0 * std::exp(-10.0) * rig.ldgf().norm()) << speed_mm_per_s;
+  }
+}
+
+TEST(ChangeOfHeightForceLaw, RestingHandKeepsMuAndForce)
+{
+  // Appendix A: "mu is defined when P is stationary". The hand stops after moving: W stays, mu
+  // and the force keep their last values exactly (no decay, no division by a vanishing dl).
+  CohRig rig;
   Vec2 f;
-  for (int k = 0; k < 300; ++k) // 40 mm/s toward +x for 0.3 s
+  for (int k = 0; k < 50; ++k)
   {
-    in.handDelta_Device_mm = { 0.04, 0.0 };
-    f = law.compute(in, req);
+    f = rig.move({ 0.001, 0.0 });
   }
-  const Vec2 ldgf =
-    LdgfForceLaw::evaluate(1.0, in.agent.dz_mm, in.agent.dl_mm, in.agent.eta, law.lambda_mm);
-  EXPECT_NEAR(f.x, ldgf.x, 1e-9);
-  EXPECT_NEAR(law.mu().norm(), 1.0, 1e-12);
-  // Moving back (-x) over the same slope: the same (gravity-like) force.
-  for (int k = 0; k < 300; ++k)
+  const Vec2 mu = rig.law.mu();
+  for (int k = 0; k < 5000; ++k)
   {
-    in.handDelta_Device_mm = { -0.04, 0.0 };
-    f = law.compute(in, req);
+    ASSERT_EQ(rig.move({}).x, f.x) << k;
+    ASSERT_EQ(rig.law.mu().x, mu.x) << k;
   }
-  EXPECT_NEAR(f.x, ldgf.x, 1e-9);
-  // The hand stops: the force fades with the window's forgetting time.
-  in.handDelta_Device_mm = {};
-  for (int k = 0; k < 500; ++k)
+  EXPECT_NEAR((f - rig.ldgf()).norm(), 0.0, 1e-12);
+}
+
+TEST(ChangeOfHeightForceLaw, ReversingHandPassesThroughZeroWithoutFlip)
+{
+  // The hand goes +x at 1 mm/s, then reverses. mu turns through zero over 2 z_max of travel; the
+  // force along the vessel keeps the LDGF sign throughout (the slope felt does not depend on the
+  // direction of travel) and its magnitude is |mu| times LDGF's: continuous, no flip.
+  CohRig rig;
+  const Vec2 ldgf = rig.ldgf();
+  ASSERT_LT(ldgf.x, -0.4);
+  for (int k = 0; k < 50; ++k)
   {
-    f = law.compute(in, req);
+    rig.move({ 0.001, 0.0 });
   }
-  EXPECT_LT(f.norm(), 0.001 * ldgf.norm());
+  Vec2 previous = rig.move({ 0.0, 0.0 });
+  double worstStep = 0.0;
+  for (int k = 0; k < 100; ++k)
+  {
+    const Vec2 f = rig.move({ -0.001, 0.0 });
+    ASSERT_LE(f.x, 1e-15) << k;
+    ASSERT_NEAR(f.norm(), std::fabs(rig.law.mu().x) * ldgf.norm(), 1e-12) << k;
+    worstStep = std::max(worstStep, (f - previous).norm());
+    previous = f;
+  }
+  EXPECT_NEAR((previous - ldgf).norm(), 0.0, 1e-12);
+  // 1 um per tick over 2 z_max = 20 um: at most |ldgf| / 10 per tick (through zero).
+  EXPECT_LE(worstStep, ldgf.norm() * 0.001 / 0.01 + 1e-12);
+}
+
+TEST(ChangeOfHeightForceLaw, SensorNoiseBelowZMaxNeverFlipsMu)
+{
+  // A hand that moved along +x rests on a sensor with white noise, sigma = z_max / 10 (the
+  // simulated device reports 5 sigma as its resolution, z_max is two of those). Over 20 s the
+  // excursions drag W by at most their peak, which stays below z_max / 2: mu stays defined
+  // (|mu| > 0.1) and points the way the hand last moved.
+  for (unsigned seed : { 1u, 2u, 3u })
+  {
+    CohRig rig;
+    for (int k = 0; k < 50; ++k)
+    {
+      rig.move({ 0.001, 0.0 });
+    }
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 0.001);
+    Vec2 previous;
+    double worstCos = 1.0;
+    double smallest = 1.0;
+    for (int k = 0; k < 20000; ++k)
+    {
+      const Vec2 p{ noise(rng), noise(rng) };
+      const Vec2 f = rig.move(p - previous);
+      previous = p;
+      const Vec2 mu = rig.law.mu();
+      smallest = std::min(smallest, mu.norm());
+      worstCos = std::min(worstCos, mu.x / std::max(mu.norm(), 1e-300));
+      ASSERT_LE(f.x, 1e-15) << k; // the slope force never reverses
+    }
+    EXPECT_GT(worstCos, 0.0) << seed;
+    EXPECT_GT(smallest, 0.1) << seed;
+  }
 }
 
 TEST(LateralGradientForceLaw, PointsTowardIncreasingDepth)
