@@ -1,5 +1,6 @@
 #include "vtouchPhantomGenerator.h"
 
+#include "vtouchAngiogramRasterizer.h"
 #include "vtouchPhantomShapes.h"
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -502,7 +504,17 @@ bool PhantomGenerator::fillT(T* voxels, const std::function<bool(double)>& progr
   const PhantomSpec& spec = this->Spec;
   const auto& d = spec.dimensions;
   const std::size_t slice = static_cast<std::size_t>(d[0]) * d[1];
-  const Rasterizer rasterizer(spec, this->Centerline);
+  // The raw angiogram has its own partial-volume rasterizer (tissue, clutter, bias, noise).
+  std::optional<AngiogramRasterizer> angiogram;
+  std::optional<Rasterizer> rasterizer;
+  if (spec.shape == PhantomShape::RawAngiogram)
+  {
+    angiogram.emplace(spec, this->Centerline);
+  }
+  else
+  {
+    rasterizer.emplace(spec, this->Centerline);
+  }
 
   // Workers accumulate the profile in float slabs and turn them into intensities + noise; the
   // calling thread only reports progress, so callbacks (e.g. VTK's UpdateProgress) stay on it.
@@ -531,7 +543,19 @@ bool PhantomGenerator::fillT(T* voxels, const std::function<bool(double)>& progr
       const int k1 = std::min(d[2], k0 + slabDepth);
       std::fill(profile.begin(), profile.end(), 0.0f);
       float* base = profile.data() - static_cast<std::size_t>(k0) * slice;
-      rasterizer.splat(base, k0, k1);
+      if (angiogram)
+      {
+        angiogram->fillSlab(base, k0, k1);
+        for (std::size_t n = static_cast<std::size_t>(k0) * slice;
+             n < static_cast<std::size_t>(k1) * slice;
+             ++n)
+        {
+          voxels[n] = toVoxel<T>(base[n]);
+        }
+        doneSlabs.fetch_add(1);
+        continue;
+      }
+      rasterizer->splat(base, k0, k1);
       const double contrast = spec.peakIntensity - spec.backgroundIntensity;
       for (std::size_t n = static_cast<std::size_t>(k0) * slice;
            n < static_cast<std::size_t>(k1) * slice;
@@ -588,6 +612,13 @@ double PhantomGenerator::intensityAt(const Vec3& p) const
   if (!this->ok())
   {
     return 0.0;
+  }
+  if (this->Spec.shape == PhantomShape::RawAngiogram)
+  {
+    // Noise-, bias- and texture-free: the vessel intensity inside a vessel, tissue outside.
+    double radius = 0.0;
+    const double d = this->distanceToCenterline_mm(p, &radius);
+    return d <= radius ? this->Spec.peakIntensity : this->Spec.tissueIntensity;
   }
   // The union of the vessels: the brightest of the per-vessel profiles (as fill() does), not the
   // profile of the nearest centerline, which differ where vessels of different radii meet.

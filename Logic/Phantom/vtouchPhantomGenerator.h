@@ -39,7 +39,8 @@ public:
   bool fill(std::uint16_t* voxels, const std::function<bool(double)>& progress = {}) const;
 
   /// Intensity at one world point without noise and roughness: the brightest vessel profile
-  /// there (brute force over the fine sampling; for tests).
+  /// there (brute force over the fine sampling; for tests). RawAngiogram: the peak intensity
+  /// inside a vessel of the tree, the tissue intensity elsewhere (no clutter, bias or texture).
   double intensityAt(const Vec3& p_World_mm) const;
 
 private:

@@ -1,5 +1,7 @@
 #include "vtouchPhantomShapes.h"
 
+#include "vtouchVascularTreeGenerator.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -132,6 +134,9 @@ public:
         break;
       case PhantomShape::Column:
         this->column();
+        break;
+      case PhantomShape::RawAngiogram:
+        this->Skeleton = VascularTreeGenerator(this->Spec, this->Step).build();
         break;
     }
     return this->Skeleton;

@@ -28,6 +28,8 @@ const char* toString(PhantomShape shape)
       return "LoopNetwork";
     case PhantomShape::Column:
       return "Column";
+    case PhantomShape::RawAngiogram:
+      return "RawAngiogram";
   }
   return "Unknown";
 }
@@ -46,7 +48,7 @@ std::string PhantomSpec::validate() const
 {
   std::ostringstream msg;
   const int shapeValue = static_cast<int>(this->shape);
-  if (shapeValue < 0 || shapeValue > static_cast<int>(PhantomShape::Column))
+  if (shapeValue < 0 || shapeValue > static_cast<int>(PhantomShape::RawAngiogram))
   {
     msg << "unknown phantom shape " << shapeValue;
     return msg.str();
@@ -159,6 +161,62 @@ std::string PhantomSpec::validate() const
   if (!std::isfinite(this->wallRoughness) || this->wallRoughness < 0.0 || this->wallRoughness > 0.5)
   {
     msg << "wall roughness " << this->wallRoughness << " must be in [0, 0.5]";
+    return msg.str();
+  }
+  return this->validateAngiogram();
+}
+
+std::string PhantomSpec::validateAngiogram() const
+{
+  std::ostringstream msg;
+  if (this->angiogramSegments < 1 || this->angiogramSegments > 2000)
+  {
+    msg << "angiogram segment count " << this->angiogramSegments << " must be in 1..2000";
+    return msg.str();
+  }
+  if (!std::isfinite(this->angiogramSmallestRadius_vox) ||
+      this->angiogramSmallestRadius_vox < 0.25 ||
+      !std::isfinite(this->angiogramLargestRadius_vox) ||
+      this->angiogramLargestRadius_vox < this->angiogramSmallestRadius_vox ||
+      this->angiogramLargestRadius_vox > 20.0)
+  {
+    msg << "angiogram radii (smallest " << this->angiogramSmallestRadius_vox << ", largest "
+        << this->angiogramLargestRadius_vox
+        << " voxels) must satisfy 0.25 <= smallest <= largest <= 20";
+    return msg.str();
+  }
+  if (this->shape == PhantomShape::RawAngiogram)
+  {
+    const double minSide =
+      std::min({ this->dimensions[0], this->dimensions[1], this->dimensions[2] });
+    if (minSide < 8.0 * this->angiogramLargestRadius_vox + 8.0)
+    {
+      msg << "a raw angiogram with a root of radius " << this->angiogramLargestRadius_vox
+          << " voxels needs at least " << 8.0 * this->angiogramLargestRadius_vox + 8.0
+          << " voxels on every axis";
+      return msg.str();
+    }
+  }
+  const int noise = static_cast<int>(this->noiseModel);
+  if (noise < 0 || noise > static_cast<int>(NoiseModel::Rician))
+  {
+    msg << "unknown noise model " << noise << " (0 Gaussian, 1 Rician)";
+    return msg.str();
+  }
+  if (!std::isfinite(this->biasAmplitude) || this->biasAmplitude < 0.0 || this->biasAmplitude > 0.9)
+  {
+    msg << "bias amplitude " << this->biasAmplitude << " must be in [0, 0.9]";
+    return msg.str();
+  }
+  if (this->clutterCount < 0 || this->clutterCount > 200)
+  {
+    msg << "clutter count " << this->clutterCount << " must be in 0..200";
+    return msg.str();
+  }
+  if (!std::isfinite(this->tissueIntensity) || this->tissueIntensity < 0.0 ||
+      this->tissueIntensity > 65535.0)
+  {
+    msg << "tissue intensity " << this->tissueIntensity << " must be within [0, 65535]";
     return msg.str();
   }
   return {};

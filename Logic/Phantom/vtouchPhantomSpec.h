@@ -22,7 +22,13 @@ enum class PhantomShape : int
   YBifurcation = 4, ///< one trunk splitting into two branches
   Tree = 5,         ///< a binary tree of depth TreeDepth (>= 3): 2^depth - 1 segments
   LoopNetwork = 6,  ///< a ring with two inflow and two outflow vessels (circle-of-Willis-like)
-  Column = 7 ///< a 4x4-voxel square column through the whole z extent (thinning failure case)
+  Column = 7, ///< a 4x4-voxel square column through the whole z extent (thinning failure case)
+  /// A raw angiogram: a seeded random bifurcating tree (Murray's law, curved segments, radii
+  /// from angiogramLargestRadius_vox down to angiogramSmallestRadius_vox) rasterised as the
+  /// fraction of each voxel inside a vessel, over tissue, with bone-like plates and blobs at
+  /// vessel intensity touching the vessels, a smooth bias field and Gaussian or Rician noise.
+  /// The centerline (port 1) is the tree only; path 0 is the root, its first point the seed.
+  RawAngiogram = 8
 };
 
 const char* toString(PhantomShape shape);
@@ -77,8 +83,28 @@ struct PhantomSpec
   std::uint32_t seed = 1;     ///< noise seed: same seed, same volume
   double wallRoughness = 0.0; ///< radius modulation amplitude as a fraction of the radius
 
+  /// RawAngiogram: tree, tissue, clutter, bias and noise model (see vtouchVascularTreeGenerator.h,
+  /// vtouchPhantomClutter.h and vtouchAngiogramRasterizer.h). Radii are in voxels of the
+  /// smallest spacing. The intensity is bias * (base + (peak - base) * f) + noise, where f is the
+  /// fraction of the voxel inside a vessel or clutter and base is tissueIntensity inside the body
+  /// (an ellipsoid filling the volume) and backgroundIntensity outside it (the corners).
+  enum class NoiseModel : int
+  {
+    Gaussian = 0, ///< additive, standard deviation noiseStdDev
+    Rician = 1    ///< magnitude of a complex signal with Gaussian noise on both channels (MRA)
+  };
+  int angiogramSegments = 200;              ///< target number of tree segments (1..2000)
+  double angiogramLargestRadius_vox = 4;    ///< root radius
+  double angiogramSmallestRadius_vox = 0.5; ///< no vessel is thinner
+  NoiseModel noiseModel = NoiseModel::Gaussian;
+  double biasAmplitude = 0.1;     ///< multiplicative bias field 1 +/- biasAmplitude (smooth)
+  int clutterCount = 8;           ///< bone-like plates and blobs touching the vessels (alternating)
+  double tissueIntensity = 400.0; ///< intensity of the soft tissue around the vessels
+
   /// Returns an empty string when the spec is usable, else a sentence saying what is wrong.
   std::string validate() const;
+  /// The RawAngiogram parameters' part of validate().
+  std::string validateAngiogram() const;
 
   /// N: the smallest physical side of the volume in millimetres.
   double referenceLength_mm() const;

@@ -46,6 +46,13 @@ vtouch::PhantomSpec makeSpec(const vtkVesselTouchPhantomSource* s)
   spec.noiseStdDev = self->GetNoiseStandardDeviation();
   spec.seed = static_cast<std::uint32_t>(self->GetSeed());
   spec.wallRoughness = self->GetWallRoughness();
+  spec.angiogramSegments = self->GetAngiogramSegments();
+  spec.angiogramLargestRadius_vox = self->GetAngiogramLargestRadius();
+  spec.angiogramSmallestRadius_vox = self->GetAngiogramSmallestRadius();
+  spec.noiseModel = static_cast<vtouch::PhantomSpec::NoiseModel>(self->GetNoiseModel());
+  spec.biasAmplitude = self->GetBiasAmplitude();
+  spec.clutterCount = self->GetClutterCount();
+  spec.tissueIntensity = self->GetTissueIntensity();
   return spec;
 }
 
@@ -203,5 +210,12 @@ void vtkVesselTouchPhantomSource::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "RadiusFraction: " << this->RadiusFraction << "\n"
      << indent << "NoiseStandardDeviation: " << this->NoiseStandardDeviation << "\n"
      << indent << "Seed: " << this->Seed << "\n"
+     << indent << "AngiogramSegments: " << this->AngiogramSegments << "\n"
+     << indent << "AngiogramRadii (voxels): " << this->AngiogramSmallestRadius << " .. "
+     << this->AngiogramLargestRadius << "\n"
+     << indent << "NoiseModel: " << this->NoiseModel << "\n"
+     << indent << "BiasAmplitude: " << this->BiasAmplitude << "\n"
+     << indent << "ClutterCount: " << this->ClutterCount << "\n"
+     << indent << "TissueIntensity: " << this->TissueIntensity << "\n"
      << indent << "OutputScalarType: " << this->OutputScalarType << "\n";
 }

@@ -14,7 +14,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Vessel shape, a vtouch::PhantomShape: 0 Circle, 1 WindingLine, 2 Helix, 3 StraightTube,
-  /// 4 YBifurcation, 5 Tree (default), 6 LoopNetwork, 7 Column.
+  /// 4 YBifurcation, 5 Tree (default), 6 LoopNetwork, 7 Column, 8 RawAngiogram (a random
+  /// vascular tree with partial volume, tissue, clutter, bias and noise; port 1 holds the tree
+  /// only, its first point is on the root: the place to seed an extraction).
   vtkSetMacro(Shape, int);
   vtkGetMacro(Shape, int);
 
@@ -77,6 +79,25 @@ public:
   vtkSetMacro(WallRoughness, double);
   vtkGetMacro(WallRoughness, double);
 
+  /// RawAngiogram: target number of tree segments (200), root and smallest radii in voxels
+  /// (4, 0.5), noise model (0 Gaussian, 1 Rician), multiplicative bias amplitude (0.1), number of
+  /// bone-like plates and blobs touching the vessels (8) and tissue intensity (400). The vessel
+  /// intensity is PeakIntensity; BackgroundIntensity is not used (the background is tissue).
+  vtkSetMacro(AngiogramSegments, int);
+  vtkGetMacro(AngiogramSegments, int);
+  vtkSetMacro(AngiogramLargestRadius, double);
+  vtkGetMacro(AngiogramLargestRadius, double);
+  vtkSetMacro(AngiogramSmallestRadius, double);
+  vtkGetMacro(AngiogramSmallestRadius, double);
+  vtkSetMacro(NoiseModel, int);
+  vtkGetMacro(NoiseModel, int);
+  vtkSetMacro(BiasAmplitude, double);
+  vtkGetMacro(BiasAmplitude, double);
+  vtkSetMacro(ClutterCount, int);
+  vtkGetMacro(ClutterCount, int);
+  vtkSetMacro(TissueIntensity, double);
+  vtkGetMacro(TissueIntensity, double);
+
   /// VTK_UNSIGNED_SHORT (default) or VTK_FLOAT.
   vtkSetMacro(OutputScalarType, int);
   vtkGetMacro(OutputScalarType, int);
@@ -115,6 +136,13 @@ private:
   double NoiseStandardDeviation = 10.0;
   int Seed = 1;
   double WallRoughness = 0.0;
+  int AngiogramSegments = 200;
+  double AngiogramLargestRadius = 4.0;
+  double AngiogramSmallestRadius = 0.5;
+  int NoiseModel = 0;
+  double BiasAmplitude = 0.1;
+  int ClutterCount = 8;
+  double TissueIntensity = 400.0;
   int OutputScalarType = VTK_UNSIGNED_SHORT;
 };
 
