@@ -1,4 +1,5 @@
 #include "vtouchChangeOfHeightForceLaw.h"
+#include "vtouchLdgfForceLaw.h"
 
 #include <cmath>
 
@@ -53,7 +54,8 @@ Vec2 ChangeOfHeightForceLaw::compute(const ForceInput& in, ForceRequest&) noexce
   {
     return {};
   }
-  const double denominator = std::fabs(in.agent.dl_mm) + std::fabs(this->lambda_mm);
+  const double denominator = std::fabs(in.agent.dl_mm) + LdgfForceLaw::boundingLambda_mm(
+                                                           this->lambda_mm, in, this->forceBudget);
   if (!(denominator > 0.0))
   {
     return {};

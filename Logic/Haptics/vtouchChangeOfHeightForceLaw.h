@@ -33,6 +33,9 @@ class ChangeOfHeightForceLaw final : public ForceLaw
 public:
   /// Regularization lambda, mm of screen arc length (as LDGF, Yi & Hayward §4.1). Default 0.005 mm.
   double lambda_mm = 0.005;
+  /// Device sizing of lambda (LdgfForceLaw::boundingLambda_mm): |f| <= k |s| <= budget x F_max.
+  /// Default 0.9.
+  double forceBudget = 0.9;
   /// z_max, mm of hand travel; 0 (default) = zMaxPerResolution x the device's position resolution.
   double zMax_mm = 0.0;
   /// z_max in device resolution counts when zMax_mm is 0. Default 2 (a reading dithering by one

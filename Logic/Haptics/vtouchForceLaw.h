@@ -33,6 +33,8 @@ struct ForceInput
   Vec2 handVelocity_Device_mm_per_s; ///< from the device's velocity estimator
   double pixelsPerHandMm = 1.0;      ///< cursor pixels per hand millimetre (includes the zoom)
   double zoneGain_N = 0.0;           ///< k(P) from the force zones, newtons per unit slope
+  double maxZoneGain_N = 0.0;        ///< k(P) in the saturation zone (its largest value), N
+  double slopeWindow_mm = 1.0;       ///< the dz/dl stencil's 3D arc length w (SceneTopology)
   double zoneFraction = 0.0;         ///< k(P) / gain in [0, 1] (scales spring laws)
   double dt_s = 0.001;               ///< tick period
   const DeviceCapabilities* capabilities = nullptr; ///< may be null (no bounds applied)

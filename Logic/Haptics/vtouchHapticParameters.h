@@ -20,6 +20,10 @@ struct HapticParameters
   // --- LDGF and change of height (see their headers) ---
   double ldgfLambda_mm = 0.005; ///< LDGF lambda, mm. Default 0.005 mm
   double cohLambda_mm = 0.005;  ///< change-of-height lambda, mm. Default 0.005 mm
+  /// Both lambdas are at least zoneGain x window / (budget x the device's force limit), so the
+  /// slope laws stay within budget x that limit where dl -> 0 (Yi & Hayward §4.1: lambda bounds
+  /// the force, not a clamp). 0 disables. Default 0.9.
+  double slopeForceBudget = 0.9;
   /// (the dz/dl stencil window is a scene setting: HapticSession::setSlopeWindow_mm, default 1 mm)
   /// Change of height z_max (Hayward & Yi eq. 8), mm; 0 (default) = cohZMaxPerResolution x the
   /// device's position resolution ("set according to the resolution of a particular device").

@@ -48,6 +48,8 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
 {
   this->Ldgf.lambda_mm = p.ldgfLambda_mm;
   this->ChangeOfHeight.lambda_mm = p.cohLambda_mm;
+  this->Ldgf.forceBudget = p.slopeForceBudget;
+  this->ChangeOfHeight.forceBudget = p.slopeForceBudget;
   this->ChangeOfHeight.zMax_mm = p.cohZMax_mm;
   this->ChangeOfHeight.zMaxPerResolution = p.cohZMaxPerResolution;
   this->Lateral.probe_px = p.lateralProbe_px;
@@ -208,6 +210,8 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
       dev.velocity_Device_mm_per_s.y };
     fin.pixelsPerHandMm = pxPerMm;
     fin.zoneGain_N = this->Zones.gain(dev.pressure);
+    fin.maxZoneGain_N = std::max(0.0, this->Zones.gain_N);
+    fin.slopeWindow_mm = vm->topology().slopeWindow_mm();
     fin.zoneFraction = this->Zones.fraction(dev.pressure);
     fin.dt_s = in.dt_s;
     fin.capabilities = in.capabilities;

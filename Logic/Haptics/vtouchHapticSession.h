@@ -134,6 +134,8 @@ public:
 
   /// Direct access for tests/scripting when not running.
   HapticPipeline& pipeline() { return this->Pipeline; }
+  /// Ticks whose force the safety filter had to clamp in magnitude (read when not running).
+  std::uint64_t safetyClampedTicks() const { return this->Safety.clampedTicks(); }
 
   // HapticTickTarget (loop thread, or the caller of runOffline()).
   void tick(double time_s, double dt_s) noexcept override;

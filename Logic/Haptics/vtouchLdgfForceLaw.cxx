@@ -1,5 +1,6 @@
 #include "vtouchLdgfForceLaw.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vtouch
@@ -19,13 +20,27 @@ Vec2 LdgfForceLaw::evaluate(double k_N,
   return eta * (k_N * dz_mm / denominator);
 }
 
+double LdgfForceLaw::boundingLambda_mm(double minimum_mm, const ForceInput& in, double budget)
+{
+  const double floor_mm = std::isfinite(minimum_mm) ? std::fabs(minimum_mm) : 0.0;
+  const double limit_N = in.capabilities ? in.capabilities->maxContinuousForce_N : 0.0;
+  if (!(budget > 0.0) || !(limit_N > 0.0) || !std::isfinite(budget * limit_N) ||
+      !(in.maxZoneGain_N > 0.0) || !(in.slopeWindow_mm > 0.0))
+  {
+    return floor_mm;
+  }
+  const double sized_mm = in.maxZoneGain_N * in.slopeWindow_mm / (budget * limit_N);
+  return std::isfinite(sized_mm) ? std::max(floor_mm, sized_mm) : floor_mm;
+}
+
 Vec2 LdgfForceLaw::compute(const ForceInput& in, ForceRequest&) noexcept
 {
   if (in.state != InteractionState::Tracing)
   {
     return {};
   }
-  return evaluate(in.zoneGain_N, in.agent.dz_mm, in.agent.dl_mm, in.agent.eta, this->lambda_mm);
+  const double lambda = boundingLambda_mm(this->lambda_mm, in, this->forceBudget);
+  return evaluate(in.zoneGain_N, in.agent.dz_mm, in.agent.dl_mm, in.agent.eta, lambda);
 }
 
 } // namespace vtouch

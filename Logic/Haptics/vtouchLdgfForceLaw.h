@@ -15,11 +15,13 @@ namespace vtouch
 class LdgfForceLaw final : public ForceLaw
 {
 public:
-  /// Regularization lambda, mm of screen arc length (> 0): bounds the force where the vessel runs
-  /// along the view direction (dl -> 0) to k * |dz| / lambda <= k * window / lambda (200 k with
-  /// the defaults). Default 0.005 mm: a bias of at most 1 % wherever the projected tangent keeps
-  /// half its length (dl >= 0.5 mm over the 1 mm stencil window).
+  /// Smallest regularization lambda, mm of screen arc length (> 0). Default 0.005 mm. The lambda
+  /// in use is the larger of this and the device-sized one (boundingLambda_mm).
   double lambda_mm = 0.005;
+  /// Fraction of the device's force limit the law may reach where dl -> 0 (Yi & Hayward §4.1:
+  /// "rather than clamping the intensity of F, the force function is regularized"). 0 disables
+  /// the device sizing. Default 0.9.
+  double forceBudget = 0.9;
 
   ForceLawId id() const override { return ForceLawId::Ldgf; }
   void reset() noexcept override {}
@@ -27,6 +29,14 @@ public:
 
   /// The law itself, for tests: k * dz / (dl + lambda) * eta.
   static Vec2 evaluate(double k_N, double dz_mm, double dl_mm, const Vec2& eta, double lambda_mm);
+  /// §4.1 sized for the device: over a stencil of 3D arc length w, dz^2 + dl^2 = w^2 (unit
+  /// tangent), and k dz / (dl + lambda) is largest where the vessel runs along the view direction
+  /// (dl = 0, |dz| = w): k w / lambda. The lambda that keeps it within budget x F_max is
+  ///   lambda = k_max w / (budget F_max),
+  /// with k_max the saturation gain of the force zones and F_max the device's
+  /// maxContinuousForce_N. Returns max(minimum_mm, that) (minimum_mm when the device reports no
+  /// force limit or budget <= 0).
+  static double boundingLambda_mm(double minimum_mm, const ForceInput& in, double budget);
 };
 
 } // namespace vtouch
