@@ -3,6 +3,7 @@
 
 #include "pqVesselTouchCenterlineExtraction.h"
 #include "pqVesselTouchSeedPicker.h"
+#include "pqVesselTouchVolumeCheck.h"
 #include "pqVesselTouchVolumeChooser.h"
 
 #include "pqActiveObjects.h"
@@ -10,20 +11,59 @@
 #include "pqPipelineSource.h"
 #include "pqRenderView.h"
 
+#include "vtkAlgorithm.h"
+#include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkImageData.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
 #include "vtkPVDataSetAttributesInformation.h"
+#include "vtkPointData.h"
+#include "vtkSMSourceProxy.h"
 
 #include <QSignalBlocker>
 
 #include <algorithm>
+#include <vector>
 
 namespace
 {
+/// The manual range's starting lower bound: the intensity above which this fraction of the voxels
+/// lie (the histogram's upper tail). Vessels fill a few percent of an angiogram's field of view;
+/// the automatic estimate (the filter's, from the seed's neighbourhood) replaces it after Extract.
+constexpr double kVesselTailFraction = 0.03;
+/// Voxels sampled for that percentile (evenly strided).
+constexpr vtkIdType kTailSamples = 1 << 18;
+
 pqRenderView* activeRenderView()
 {
   return qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView());
+}
+
+/// The value with `fraction` of the sampled voxels above it; false without client-side data.
+bool upperTail(pqPipelineSource* volume, double fraction, double& value)
+{
+  auto* proxy = volume ? vtkSMSourceProxy::SafeDownCast(volume->getProxy()) : nullptr;
+  auto* algorithm = proxy ? vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject()) : nullptr;
+  auto* image = algorithm ? vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0)) : nullptr;
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  const vtkIdType count = scalars ? scalars->GetNumberOfTuples() : 0;
+  if (count <= 0)
+  {
+    return false;
+  }
+  const vtkIdType stride = std::max<vtkIdType>(1, count / kTailSamples);
+  std::vector<double> samples;
+  samples.reserve(static_cast<size_t>(count / stride + 1));
+  for (vtkIdType i = 0; i < count; i += stride)
+  {
+    samples.push_back(scalars->GetComponent(i, 0));
+  }
+  const auto rank = static_cast<size_t>((1.0 - fraction) * static_cast<double>(samples.size() - 1));
+  std::nth_element(
+    samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(rank), samples.end());
+  value = samples[rank];
+  return true;
 }
 } // namespace
 
@@ -39,6 +79,10 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
     &pqVesselTouchVolumeChooser::currentVolumeChanged,
     this,
     &pqVesselTouchCenterlineWorkflow::onVolumeChanged);
+  QObject::connect(this->Volumes,
+    &pqVesselTouchVolumeChooser::problemChanged,
+    this,
+    [this](const QString& problem) { showMessage(this->Ui.volumeMessage, problem, true); });
   QObject::connect(this->Ui.pickSeedButton,
     &QPushButton::toggled,
     this,
@@ -54,10 +98,14 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
     {
       const QSignalBlocker blocker(this->Ui.pickSeedButton);
       this->Ui.pickSeedButton->setChecked(false);
-      Q_EMIT this->message(why);
+      this->setExtractMessage(why, true);
     });
   QObject::connect(
     this->Ui.extractButton, &QPushButton::clicked, this, &pqVesselTouchCenterlineWorkflow::extract);
+  QObject::connect(this->Ui.automaticRange,
+    &QCheckBox::toggled,
+    this,
+    &pqVesselTouchCenterlineWorkflow::onAutomaticToggled);
   QObject::connect(this->Extraction,
     &pqVesselTouchCenterlineExtraction::progress,
     this->Ui.extractProgress,
@@ -65,11 +113,18 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
   QObject::connect(this->Extraction,
     &pqVesselTouchCenterlineExtraction::failed,
     this,
-    &pqVesselTouchCenterlineWorkflow::message);
+    [this](const QString& why)
+    {
+      this->Ui.extractProgress->setValue(0);
+      this->setExtractMessage(why, true);
+    });
   QObject::connect(this->Extraction,
     &pqVesselTouchCenterlineExtraction::finished,
     this,
     &pqVesselTouchCenterlineWorkflow::centerlineReady);
+  showMessage(this->Ui.volumeMessage, this->Volumes->problem(), true);
+  showMessage(this->Ui.extractMessage, QString(), false);
+  this->onAutomaticToggled(this->Ui.automaticRange->isChecked());
   this->onVolumeChanged(this->Volumes->currentVolume());
 }
 
@@ -96,21 +151,50 @@ double pqVesselTouchCenterlineWorkflow::upperThreshold() const
   return this->Ui.upperThreshold->value();
 }
 
+bool pqVesselTouchCenterlineWorkflow::automaticRange() const
+{
+  return this->Ui.automaticRange->isChecked();
+}
+
 pqPipelineSource* pqVesselTouchCenterlineWorkflow::centerline() const
 {
   return this->Extraction->centerline();
 }
 
+QString pqVesselTouchCenterlineWorkflow::extractMessage() const
+{
+  return this->Ui.extractMessage->text();
+}
+
+void pqVesselTouchCenterlineWorkflow::showMessage(QLabel* label, const QString& text, bool error)
+{
+  label->setText(text);
+  label->setStyleSheet(error ? QStringLiteral("color: #c00000;") : QString());
+  label->setVisible(!text.isEmpty());
+}
+
+void pqVesselTouchCenterlineWorkflow::setExtractMessage(const QString& text, bool error)
+{
+  showMessage(this->Ui.extractMessage, text, error);
+}
+
 void pqVesselTouchCenterlineWorkflow::onPickSeedToggled(bool armed)
 {
-  if (armed)
-  {
-    this->Picker->arm(activeRenderView(), this->Volumes->currentVolume());
-  }
-  else
+  if (!armed)
   {
     this->Picker->disarm();
+    return;
   }
+  pqPipelineSource* volume = this->Volumes->currentVolume();
+  if (!volume)
+  {
+    const QSignalBlocker blocker(this->Ui.pickSeedButton);
+    this->Ui.pickSeedButton->setChecked(false);
+    this->setExtractMessage(tr("Pick seed: %1").arg(this->Volumes->problem()), true);
+    return;
+  }
+  this->setExtractMessage(tr("Click a vessel in the render view."), false);
+  this->Picker->arm(activeRenderView(), volume);
 }
 
 bool pqVesselTouchCenterlineWorkflow::pickSeedAt(const QPoint& position)
@@ -124,26 +208,98 @@ void pqVesselTouchCenterlineWorkflow::onSeedPicked(double x_mm,
   double value)
 {
   this->HasSeed = true;
+  this->SeedVolume = this->Volumes->currentVolume();
   this->Seed_mm[0] = x_mm;
   this->Seed_mm[1] = y_mm;
   this->Seed_mm[2] = z_mm;
+  this->SeedValue = value;
   this->Ui.seedLabel->setText(tr("(%1, %2, %3) mm, value %4")
-                                .arg(x_mm, 0, 'f', 2)
-                                .arg(y_mm, 0, 'f', 2)
-                                .arg(z_mm, 0, 'f', 2)
+                                .arg(x_mm, 0, 'f', 1)
+                                .arg(y_mm, 0, 'f', 1)
+                                .arg(z_mm, 0, 'f', 1)
                                 .arg(value));
   const QSignalBlocker blocker(this->Ui.pickSeedButton);
   this->Ui.pickSeedButton->setChecked(false);
-  Q_EMIT this->message(QString());
+  // The brightest voxel under the click at the volume's minimum: the ray crossed background only.
+  if (value <= this->DataRange[0])
+  {
+    this->setExtractMessage(tr("The seed is on background (value %1, the volume's minimum): "
+                               "click on a bright vessel.")
+                              .arg(value),
+      true);
+  }
+  else if (!this->automaticRange() && value < this->Ui.lowerThreshold->value())
+  {
+    this->setExtractMessage(tr("The seed's value %1 is below the vessel range's lower bound %2: "
+                               "lower it, or tick Automatic.")
+                              .arg(value)
+                              .arg(this->Ui.lowerThreshold->value()),
+      true);
+  }
+  else
+  {
+    this->setExtractMessage(QString(), false);
+  }
 }
 
-void pqVesselTouchCenterlineWorkflow::onVolumeChanged(pqPipelineSource* volume)
+void pqVesselTouchCenterlineWorkflow::setDataRange(pqPipelineSource* volume)
 {
   vtkPVDataInformation* data = volume ? volume->getOutputPort(0)->getDataInformation() : nullptr;
   vtkPVArrayInformation* scalars =
     data ? data->GetPointDataInformation()->GetAttributeInformation(vtkDataSetAttributes::SCALARS)
          : nullptr;
-  if (volume && !scalars)
+  QDoubleSpinBox* fields[2] = { this->Ui.lowerThreshold, this->Ui.upperThreshold };
+  double range[2] = { 0.0, 0.0 };
+  if (scalars)
+  {
+    scalars->GetComponentRange(0, range);
+  }
+  const bool known = scalars && range[0] <= range[1];
+  this->DataRange[0] = known ? range[0] : 0.0;
+  this->DataRange[1] = known ? range[1] : 0.0;
+  // Small ranges (a normalised volume) need decimals; intensities in the hundreds do not.
+  const int decimals = known && range[1] - range[0] < 10.0 ? 3 : 1;
+  double lower = range[1];
+  if (known && !upperTail(volume, kVesselTailFraction, lower))
+  {
+    lower = 0.5 * (range[0] + range[1]); // remote data: no voxels to sample here
+  }
+  for (QDoubleSpinBox* field : fields)
+  {
+    const QSignalBlocker blocker(field);
+    field->setDecimals(decimals);
+    field->setRange(this->DataRange[0], this->DataRange[1]);
+    // With no volume the fields show a dash, not a number that means nothing.
+    field->setSpecialValueText(known ? QString() : QStringLiteral("–"));
+  }
+  if (known)
+  {
+    const QSignalBlocker lowerBlocker(this->Ui.lowerThreshold);
+    const QSignalBlocker upperBlocker(this->Ui.upperThreshold);
+    this->Ui.lowerThreshold->setValue(std::min(lower, range[1]));
+    this->Ui.upperThreshold->setValue(range[1]);
+  }
+  this->onAutomaticToggled(this->automaticRange());
+}
+
+void pqVesselTouchCenterlineWorkflow::onAutomaticToggled(bool automatic)
+{
+  const bool hasVolume = this->DataRange[0] < this->DataRange[1];
+  this->Ui.lowerThreshold->setEnabled(!automatic && hasVolume);
+  this->Ui.upperThreshold->setEnabled(!automatic && hasVolume);
+}
+
+void pqVesselTouchCenterlineWorkflow::onVolumeChanged(pqPipelineSource* volume)
+{
+  if (volume != this->SeedVolume || !volume)
+  {
+    // A seed belongs to the volume it was picked in.
+    this->HasSeed = false;
+    this->SeedVolume = nullptr;
+    this->Ui.seedLabel->setText(tr("No seed"));
+  }
+  vtkPVDataInformation* data = volume ? volume->getOutputPort(0)->getDataInformation() : nullptr;
+  if (volume && (!data || data->GetNumberOfPoints() <= 0))
   {
     // No data yet (a source created a moment ago): try again when it has updated.
     QObject::connect(volume,
@@ -151,19 +307,10 @@ void pqVesselTouchCenterlineWorkflow::onVolumeChanged(pqPipelineSource* volume)
       this,
       &pqVesselTouchCenterlineWorkflow::onVolumeDataUpdated,
       Qt::UniqueConnection);
-    return;
   }
-  if (!scalars)
-  {
-    return;
-  }
-  double range[2];
-  scalars->GetComponentRange(0, range);
-  if (range[0] <= range[1])
-  {
-    this->Ui.lowerThreshold->setValue(0.5 * (range[0] + range[1]));
-    this->Ui.upperThreshold->setValue(range[1]);
-  }
+  this->setDataRange(volume);
+  this->Ui.extractProgress->setValue(0);
+  this->setExtractMessage(QString(), false);
 }
 
 void pqVesselTouchCenterlineWorkflow::onVolumeDataUpdated(pqPipelineSource* volume)
@@ -171,21 +318,54 @@ void pqVesselTouchCenterlineWorkflow::onVolumeDataUpdated(pqPipelineSource* volu
   QObject::disconnect(volume, nullptr, this, nullptr);
   if (volume == this->Volumes->currentVolume())
   {
-    this->onVolumeChanged(volume);
+    this->setDataRange(volume);
   }
 }
 
 void pqVesselTouchCenterlineWorkflow::extract()
 {
+  pqPipelineSource* volume = this->Volumes->currentVolume();
+  if (!volume)
+  {
+    this->setExtractMessage(tr("Pick a volume first: %1").arg(this->Volumes->problem()), true);
+    return;
+  }
   if (!this->HasSeed)
   {
-    Q_EMIT this->message(tr("Extract centerlines: pick a seed first."));
+    this->setExtractMessage(
+      tr("Pick a seed first: press Pick seed, then click a vessel in the view."), true);
     return;
   }
   this->Ui.extractButton->setEnabled(false);
-  this->Extraction->extract(this->Volumes->currentVolume(),
+  this->setExtractMessage(tr("Extracting..."), false);
+  pqPipelineSource* filter = this->Extraction->extract(volume,
     this->Seed_mm,
+    this->automaticRange(),
     this->Ui.lowerThreshold->value(),
-    this->Ui.upperThreshold->value());
+    this->Ui.upperThreshold->value(),
+    activeRenderView());
   this->Ui.extractButton->setEnabled(true);
+  const pqVesselTouchExtractionResult& result = this->Extraction->result();
+  if (!filter || result.paths <= 0)
+  {
+    return; // failed() showed why
+  }
+  QString text = tr("%n centerline path(s).", "", result.paths);
+  if (result.rangeKnown)
+  {
+    // The range used, in the fields too: the user's starting point for an override.
+    const QSignalBlocker lowerBlocker(this->Ui.lowerThreshold);
+    const QSignalBlocker upperBlocker(this->Ui.upperThreshold);
+    this->Ui.lowerThreshold->setValue(result.rangeUsed[0]);
+    this->Ui.upperThreshold->setValue(result.rangeUsed[1]);
+    text += tr(" Vessel intensity %1 to %2 (%3).")
+              .arg(result.rangeUsed[0])
+              .arg(result.rangeUsed[1])
+              .arg(result.rangeAutomatic ? tr("automatic") : tr("yours"));
+  }
+  if (!result.message.isEmpty())
+  {
+    text += QLatin1Char(' ') + result.message;
+  }
+  this->setExtractMessage(text, false);
 }

@@ -1,14 +1,17 @@
-// The panel's "Centerlines" box: the volume combo, "Pick seed" (a one-shot click in the active
-// render view, pqVesselTouchSeedPicker), the seed shown in mm, the vessel intensity range
-// (defaulting to the upper half of the volume's scalar range), and "Extract centerlines"
-// (pqVesselTouchCenterlineExtraction) with its progress bar. The panel feeds the result to the
-// session.
+// The panel's "Centerlines" section: the volume combo (3D volumes only; why another image is not
+// one shows beside it), "Pick seed" (a one-shot click in the active render view,
+// pqVesselTouchSeedPicker), the seed shown in mm with a warning when it lies on background, the
+// vessel intensity range (the filter's automatic estimate, or the user's, clamped to the data's
+// range), and "Extract" (pqVesselTouchCenterlineExtraction) with its progress bar and its message
+// beside it. The panel feeds the result to the session.
 #ifndef pqVesselTouchCenterlineWorkflow_h
 #define pqVesselTouchCenterlineWorkflow_h
 
 #include <QObject>
 #include <QPoint>
+#include <QPointer>
 
+class QLabel;
 class pqPipelineSource;
 class pqVesselTouchCenterlineExtraction;
 class pqVesselTouchSeedPicker;
@@ -27,43 +30,54 @@ public:
   pqVesselTouchCenterlineWorkflow(Ui::pqVesselTouchDockPanel& ui, QObject* parent = nullptr);
   ~pqVesselTouchCenterlineWorkflow() override;
 
-  /// The chosen volume, null when no source produces image data.
+  /// The chosen volume, null when no source produces a 3D image.
   pqPipelineSource* currentVolume() const;
-  /// The picked seed, world mm; false before any pick.
+  /// The picked seed, world mm; false before any pick (and after the volume changed).
   bool seed(double seed_mm[3]) const;
-  /// The vessel intensity range given to VesselCenterline (the volume's units).
+  /// The vessel intensity range given to VesselCenterline when Automatic is off (the volume's
+  /// units).
   double lowerThreshold() const;
   double upperThreshold() const;
+  bool automaticRange() const;
   /// The VesselCenterline filter of the last extraction, null before.
   pqPipelineSource* centerline() const;
+  /// The message beside Extract ("" when none).
+  QString extractMessage() const;
 
 public Q_SLOTS:
   /// What an armed click does, at once at `position` (view widget pixels, top-left origin) in the
   /// active render view and the chosen volume. Returns whether a seed was found.
   bool pickSeedAt(const QPoint& position);
-  /// Runs VesselCenterline at the seed with the intensity range; emits centerlineReady() or
-  /// message().
+  /// Runs VesselCenterline at the seed; emits centerlineReady() or shows why not.
   void extract();
 
 Q_SIGNALS:
   /// Centerlines were extracted: `paths` polylines.
   void centerlineReady(pqPipelineSource* centerline, int paths);
-  /// An error to show in red, or "" once an action succeeded.
-  void message(const QString& text);
 
 private Q_SLOTS:
   void onPickSeedToggled(bool armed);
   void onSeedPicked(double x_mm, double y_mm, double z_mm, double value);
   void onVolumeChanged(pqPipelineSource* volume);
   void onVolumeDataUpdated(pqPipelineSource* volume);
+  void onAutomaticToggled(bool automatic);
 
 private:
+  /// Shows `text` in `label` (red when `error`), hidden when empty.
+  static void showMessage(QLabel* label, const QString& text, bool error);
+  void setExtractMessage(const QString& text, bool error);
+  /// The range fields: bounded by the data's range, and their default (the upper tail).
+  void setDataRange(pqPipelineSource* volume);
+
   Ui::pqVesselTouchDockPanel& Ui;
   pqVesselTouchVolumeChooser* Volumes = nullptr;
   pqVesselTouchSeedPicker* Picker = nullptr;
   pqVesselTouchCenterlineExtraction* Extraction = nullptr;
+  QPointer<pqPipelineSource> SeedVolume;
   bool HasSeed = false;
   double Seed_mm[3] = { 0.0, 0.0, 0.0 };
+  double SeedValue = 0.0;
+  double DataRange[2] = { 0.0, 0.0 };
   Q_DISABLE_COPY(pqVesselTouchCenterlineWorkflow)
 };
 

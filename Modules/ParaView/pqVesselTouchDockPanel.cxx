@@ -7,6 +7,7 @@
 #include "pqVesselTouchPanelValues.h"
 #include "pqVesselTouchSessionBinding.h"
 #include "pqVesselTouchSessionStatus.h"
+#include "pqVesselTouchTestDriver.h"
 #include "pqVesselTouchViewBinding.h"
 
 #include "qVesselTouchDeviceWidget.h"
@@ -172,6 +173,10 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
   // like any other panel).
   QTimer::singleShot(0, this, &pqVesselTouchDockPanel::revealOnce);
 
+  if (!qEnvironmentVariableIsEmpty("VESSELTOUCH_GUI_DRIVER"))
+  {
+    new pqVesselTouchTestDriver(this, qEnvironmentVariable("VESSELTOUCH_GUI_DRIVER"));
+  }
   if (!qEnvironmentVariableIsEmpty("VESSELTOUCH_GUI_SELFTEST"))
   {
     auto* selfTest =
@@ -275,10 +280,6 @@ void pqVesselTouchDockPanel::connectWidgets()
     in.Ui.startButton, &QPushButton::clicked, this, &pqVesselTouchDockPanel::startSession);
   QObject::connect(
     in.Ui.stopButton, &QPushButton::clicked, this, &pqVesselTouchDockPanel::stopSession);
-  QObject::connect(in.Centerlines,
-    &pqVesselTouchCenterlineWorkflow::message,
-    this,
-    &pqVesselTouchDockPanel::showError);
   QObject::connect(in.Centerlines,
     &pqVesselTouchCenterlineWorkflow::centerlineReady,
     this,

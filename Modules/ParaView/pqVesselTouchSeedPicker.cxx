@@ -142,9 +142,16 @@ bool pqVesselTouchSeedPicker::pickAt(pqRenderView* view,
 {
   auto* proxy = volume ? vtkSMSourceProxy::SafeDownCast(volume->getProxy()) : nullptr;
   auto* algorithm = proxy ? vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject()) : nullptr;
+  if (!volume)
+  {
+    Q_EMIT this->pickFailed(tr("Pick seed: choose a volume first."));
+    return false;
+  }
   if (!algorithm)
   {
-    Q_EMIT this->pickFailed(tr("Pick seed: choose a volume first (builtin session only)."));
+    // Connected to a separate pvserver: the voxels are not in this process.
+    Q_EMIT this->pickFailed(
+      tr("Pick seed reads the voxels in this ParaView: connect without a separate server."));
     return false;
   }
   proxy->UpdatePipeline();

@@ -1,10 +1,16 @@
-// Keeps a combo box listing the pipeline sources whose first output is a vtkImageData (the
-// volumes a centerline can be extracted from), and selects the active source when it is one.
+// Keeps a combo box listing the pipeline sources whose first output is a usable volume (3D image
+// data with scalars, pqVesselTouchVolumeCheck), and selects the active source when it is one. An
+// image that is not a usable volume (a PNG, one slice) is left out and its reason reported.
+//
+// The combo holds each source's global proxy ID, never a pointer: a source deleted from the
+// Pipeline Browser or by Edit > Reset Session is looked up as gone instead of dereferenced (a
+// QVariant holding a freed QObject pointer crashes on value<>(), which qobject_casts it).
 #ifndef pqVesselTouchVolumeChooser_h
 #define pqVesselTouchVolumeChooser_h
 
 #include <QObject>
 #include <QPointer>
+#include <QString>
 
 class QComboBox;
 class pqPipelineSource;
@@ -21,9 +27,13 @@ public:
   pqPipelineSource* currentVolume() const;
   /// Selects `source` when it is listed.
   void setCurrentVolume(pqPipelineSource* source);
+  /// Why there is no usable volume to choose, or why the active image is not listed ("" when
+  /// the active source, if an image, is a usable volume and the list is not empty).
+  QString problem() const;
 
 Q_SIGNALS:
   void currentVolumeChanged(pqPipelineSource* volume);
+  void problemChanged(const QString& problem);
 
 public Q_SLOTS:
   /// Rebuilds the list, keeping the choice when it is still a volume.
@@ -32,11 +42,13 @@ public Q_SLOTS:
 private Q_SLOTS:
   void onActiveSourceChanged(pqPipelineSource* source);
   void onSourceAdded(pqPipelineSource* source);
+  void onSourceAboutToBeRemoved(pqPipelineSource* source);
 
 private:
-  static bool isVolume(pqPipelineSource* source);
+  void updateProblem();
 
   QPointer<QComboBox> Combo;
+  QString Problem;
   Q_DISABLE_COPY(pqVesselTouchVolumeChooser)
 };
 

@@ -1,0 +1,371 @@
+#include "pqVesselTouchTestDriver.h"
+
+#include "pqVesselTouchSessionStatus.h"
+
+#include "pqActiveObjects.h"
+#include "pqApplicationCore.h"
+#include "pqCoreUtilities.h"
+#include "pqPVApplicationCore.h"
+#include "pqPipelineSource.h"
+#include "pqPythonManager.h"
+#include "pqRenderView.h"
+#include "pqServerManagerModel.h"
+
+#include "vtkSMProxy.h"
+#include "vtkSMViewProxy.h"
+
+#include <QAbstractButton>
+#include <QAction>
+#include <QComboBox>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QGroupBox>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QLabel>
+#include <QLineEdit>
+#include <QProgressBar>
+#include <QSaveFile>
+#include <QSpinBox>
+#include <QTimer>
+#include <QToolBar>
+#include <QToolButton>
+
+namespace
+{
+constexpr int kPollPeriod_ms = 100;
+
+QJsonArray screenRect(const QWidget* widget)
+{
+  const QPoint topLeft = widget->mapToGlobal(QPoint(0, 0));
+  return QJsonArray{ topLeft.x(), topLeft.y(), widget->width(), widget->height() };
+}
+
+QJsonObject describe(const QWidget* widget)
+{
+  QJsonObject entry;
+  entry.insert("class", widget->metaObject()->className());
+  entry.insert("visible", widget->isVisible());
+  entry.insert("enabled", widget->isEnabled());
+  entry.insert("rect", screenRect(widget));
+  if (!widget->toolTip().isEmpty())
+  {
+    entry.insert("tooltip", widget->toolTip());
+  }
+  if (const auto* label = qobject_cast<const QLabel*>(widget))
+  {
+    entry.insert("text", label->text());
+  }
+  else if (const auto* button = qobject_cast<const QAbstractButton*>(widget))
+  {
+    entry.insert("text", button->text());
+    entry.insert("checked", button->isChecked());
+  }
+  else if (const auto* spin = qobject_cast<const QDoubleSpinBox*>(widget))
+  {
+    entry.insert("value", spin->value());
+    entry.insert("minimum", spin->minimum());
+    entry.insert("maximum", spin->maximum());
+  }
+  else if (const auto* intSpin = qobject_cast<const QSpinBox*>(widget))
+  {
+    entry.insert("value", intSpin->value());
+  }
+  else if (const auto* combo = qobject_cast<const QComboBox*>(widget))
+  {
+    entry.insert("text", combo->currentText());
+    QJsonArray items;
+    for (int i = 0; i < combo->count(); ++i)
+    {
+      items.append(combo->itemText(i));
+    }
+    entry.insert("items", items);
+  }
+  else if (const auto* edit = qobject_cast<const QLineEdit*>(widget))
+  {
+    entry.insert("text", edit->text());
+  }
+  else if (const auto* bar = qobject_cast<const QProgressBar*>(widget))
+  {
+    entry.insert("value", bar->value());
+    entry.insert("text", bar->text());
+  }
+  else if (const auto* group = qobject_cast<const QGroupBox*>(widget))
+  {
+    entry.insert("text", group->title());
+    entry.insert("checked", group->isChecked());
+  }
+  return entry;
+}
+
+QWidget* mainWindow()
+{
+  return pqCoreUtilities::mainWidget();
+}
+
+template<typename T>
+T* findNamed(const QString& name)
+{
+  QWidget* window = mainWindow();
+  return window ? window->findChild<T*>(name) : nullptr;
+}
+} // namespace
+
+pqVesselTouchTestDriver::pqVesselTouchTestDriver(QWidget* panel, const QString& directory)
+  : QObject(panel)
+  , Panel(panel)
+  , Directory(directory)
+{
+  auto* timer = new QTimer(this);
+  timer->setInterval(kPollPeriod_ms);
+  QObject::connect(timer, &QTimer::timeout, this, &pqVesselTouchTestDriver::poll);
+  timer->start();
+}
+
+pqVesselTouchTestDriver::~pqVesselTouchTestDriver() = default;
+
+void pqVesselTouchTestDriver::poll()
+{
+  if (this->Busy)
+  {
+    return; // a command's nested event loop (a modal dialog) polls again
+  }
+  this->Busy = true;
+  this->pollOnce();
+  this->Busy = false;
+}
+
+void pqVesselTouchTestDriver::pollOnce()
+{
+  const QDir directory(this->Directory);
+  QFile command(directory.filePath(QString("cmd-%1.txt").arg(this->Next)));
+  if (!command.exists() || !command.open(QIODevice::ReadOnly))
+  {
+    return;
+  }
+  const QString line = QString::fromUtf8(command.readAll()).trimmed();
+  command.close();
+  const QString error = this->run(line);
+  QJsonObject reply;
+  reply.insert("command", line);
+  reply.insert("ok", error.isEmpty());
+  reply.insert("error", error);
+  reply.insert("state", this->state());
+  QSaveFile file(directory.filePath(QString("reply-%1.json").arg(this->Next)));
+  if (file.open(QIODevice::WriteOnly))
+  {
+    file.write(QJsonDocument(reply).toJson());
+    file.commit();
+  }
+  ++this->Next;
+}
+
+QString pqVesselTouchTestDriver::run(const QString& line)
+{
+  const QString verb = line.section(' ', 0, 0);
+  const QString name = line.section(' ', 1, 1);
+  const QString rest = line.section(' ', 2);
+  if (verb == "state")
+  {
+    return QString();
+  }
+  if (verb == "trigger")
+  {
+    QAction* action = findNamed<QAction>(name);
+    if (!action)
+    {
+      return QString("no action %1").arg(name);
+    }
+    if (!action->isEnabled())
+    {
+      return QString("action %1 is disabled").arg(name);
+    }
+    // Queued: a confirmation dialog the action opens (Reset Session) must not block the reply;
+    // the test answers it through the X server.
+    QTimer::singleShot(0, action, &QAction::trigger);
+    return QString();
+  }
+  if (verb == "click" || verb == "check")
+  {
+    auto* button = findNamed<QAbstractButton>(name);
+    if (!button)
+    {
+      return QString("no button %1").arg(name);
+    }
+    if (!button->isEnabled())
+    {
+      return QString("button %1 is disabled").arg(name);
+    }
+    if (verb == "click")
+    {
+      button->click();
+    }
+    else if (button->isChecked() != (rest.trimmed() == "1"))
+    {
+      button->click();
+    }
+    return QString();
+  }
+  if (verb == "set")
+  {
+    QWidget* widget = findNamed<QWidget>(name);
+    if (auto* spin = qobject_cast<QDoubleSpinBox*>(widget))
+    {
+      spin->setValue(rest.toDouble());
+      Q_EMIT spin->editingFinished();
+    }
+    else if (auto* combo = qobject_cast<QComboBox*>(widget))
+    {
+      const int index = combo->findText(rest);
+      if (index < 0)
+      {
+        return QString("%1 has no item %2").arg(name, rest);
+      }
+      combo->setCurrentIndex(index);
+    }
+    else if (auto* edit = qobject_cast<QLineEdit*>(widget))
+    {
+      edit->setText(rest);
+      Q_EMIT edit->editingFinished();
+    }
+    else
+    {
+      return QString("no editable widget %1").arg(name);
+    }
+    return QString();
+  }
+  if (verb == "select")
+  {
+    pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+    pqPipelineSource* source = name.isEmpty() ? nullptr : model->findItem<pqPipelineSource*>(name);
+    if (!name.isEmpty() && !source)
+    {
+      return QString("no source %1").arg(name);
+    }
+    pqActiveObjects::instance().setActiveSource(source);
+    return QString();
+  }
+  if (verb == "python")
+  {
+    // A script file run by ParaView's Python, as the Python Shell's "Run Script" does.
+    pqPythonManager* python =
+      pqPVApplicationCore::instance() ? pqPVApplicationCore::instance()->pythonManager() : nullptr;
+    if (!python || !QFile::exists(name))
+    {
+      return QString("cannot run the Python script %1").arg(name);
+    }
+    python->executeScript(name);
+    return QString();
+  }
+  if (verb == "capture" || verb == "render")
+  {
+    auto* view = qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView());
+    if (!view)
+    {
+      return QString("no active render view");
+    }
+    view->forceRender();
+    if (verb == "capture" &&
+        !view->getViewProxy()->WriteImage(name.toUtf8().constData(), "vtkPNGWriter", 1))
+    {
+      return QString("could not write %1").arg(name);
+    }
+    return QString();
+  }
+  return QString("unknown verb %1").arg(verb);
+}
+
+QJsonObject pqVesselTouchTestDriver::state() const
+{
+  QJsonObject state;
+  QJsonObject widgets;
+  QWidget* window = mainWindow();
+  QList<QWidget*> roots;
+  if (this->Panel)
+  {
+    roots.append(this->Panel);
+  }
+  if (window)
+  {
+    for (QToolBar* bar : window->findChildren<QToolBar*>())
+    {
+      if (bar->objectName().contains("VesselTouch"))
+      {
+        roots.append(bar);
+      }
+    }
+  }
+  for (QWidget* root : roots)
+  {
+    widgets.insert(root->objectName(), describe(root));
+    for (QWidget* child : root->findChildren<QWidget*>())
+    {
+      if (!child->objectName().isEmpty() && !child->objectName().startsWith("qt_"))
+      {
+        widgets.insert(child->objectName(), describe(child));
+      }
+    }
+  }
+  state.insert("widgets", widgets);
+
+  QJsonObject actions;
+  if (window)
+  {
+    for (QAction* action : window->findChildren<QAction*>())
+    {
+      if (action->objectName().startsWith("VesselTouch") || action->text().contains("VesselTouch"))
+      {
+        QJsonObject entry;
+        entry.insert("text", action->text());
+        entry.insert("enabled", action->isEnabled());
+        entry.insert("checked", action->isChecked());
+        entry.insert("tooltip", action->toolTip());
+        entry.insert("has_icon", !action->icon().isNull());
+        actions.insert(action->objectName(), entry);
+      }
+    }
+  }
+  state.insert("actions", actions);
+
+  QJsonArray sources;
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    sources.append(source->getSMName());
+  }
+  state.insert("sources", sources);
+  pqPipelineSource* active = pqActiveObjects::instance().activeSource();
+  state.insert("active_source", active ? active->getSMName() : QString());
+
+  if (auto* view = qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView()))
+  {
+    if (QWidget* widget = view->widget())
+    {
+      state.insert("view_rect", screenRect(widget));
+    }
+  }
+
+  pqPipelineSource* sessionSource = model->findItem<pqPipelineSource*>("VesselTouchSession");
+  vtkSMProxy* session = sessionSource ? sessionSource->getProxy() : nullptr;
+  const pqVesselTouchSessionStatus status = pqVesselTouchSessionStatus::read(session);
+  QJsonObject sessionState;
+  sessionState.insert("exists", session != nullptr);
+  sessionState.insert("running", status.running);
+  sessionState.insert("fault", status.faultCode);
+  sessionState.insert("fault_text", status.faultText);
+  sessionState.insert("last_error", status.lastError);
+  sessionState.insert("ticks", static_cast<double>(status.loop.ticks));
+  sessionState.insert("overruns", static_cast<double>(status.loop.overruns));
+  sessionState.insert("period_error_max_us", status.loop.periodErrorMax_us);
+  sessionState.insert("period_error_p99_us", status.loop.periodErrorP99_us);
+  sessionState.insert("tracing", status.loop.tracing);
+  sessionState.insert("skeleton_paths", status.skeletonPaths);
+  sessionState.insert(
+    "agent_force_N", QJsonArray{ status.agentForce_N[0], status.agentForce_N[1] });
+  sessionState.insert("agent_position_mm",
+    QJsonArray{
+      status.agentPosition_mm[0], status.agentPosition_mm[1], status.agentPosition_mm[2] });
+  state.insert("session", sessionState);
+  return state;
+}

@@ -1,0 +1,48 @@
+// Drives the real ParaView GUI for the GUI tests (Testing/ParaView/gui/gui_driver.py), when
+// VESSELTOUCH_GUI_DRIVER names a directory: the test writes numbered command files there
+// ("cmd-<n>.txt", one line "verb arguments"), the driver runs each on the GUI thread as a user's
+// action would run (a QAction triggered as its menu entry does, a button clicked, a spin box
+// edited) and answers with "reply-<n>.json": {"ok", "error", "state"}. The state lists every
+// named widget of the VesselTouch panel and toolbar (text, value, visibility, screen geometry for
+// xdotool), the pipeline sources, the active view's screen geometry and the session's status.
+//
+// Verbs: state | trigger ACTION (queued: the reply comes before any dialog it opens) | click BUTTON
+// | check BUTTON 0|1 | set WIDGET VALUE | select SOURCE ("" for none) | python SCRIPT (run in the
+// GUI's Python) | capture PNG (the active render view's image) | render.
+#ifndef pqVesselTouchTestDriver_h
+#define pqVesselTouchTestDriver_h
+
+#include <QJsonObject>
+#include <QObject>
+#include <QPointer>
+#include <QString>
+
+class QWidget;
+
+class pqVesselTouchTestDriver : public QObject
+{
+  Q_OBJECT
+public:
+  /// Polls `directory` for command files; `panel` is the VesselTouch dock panel.
+  pqVesselTouchTestDriver(QWidget* panel, const QString& directory);
+  ~pqVesselTouchTestDriver() override;
+
+  /// The state the replies carry.
+  QJsonObject state() const;
+
+private Q_SLOTS:
+  void poll();
+
+private:
+  void pollOnce();
+  /// Runs one command line; "" on success, else the error.
+  QString run(const QString& line);
+
+  QPointer<QWidget> Panel;
+  QString Directory;
+  int Next = 1;
+  bool Busy = false;
+  Q_DISABLE_COPY(pqVesselTouchTestDriver)
+};
+
+#endif

@@ -1,0 +1,42 @@
+"""Scene of the driven GUI tests (gui_driver.py), run by the real ParaView as
+``paraview --script=...``. VESSELTOUCH_SCENE chooses it:
+  phantom   a VesselPhantom tree ("Phantom") shown as a MIP, active (the clinician's start)
+  volume+2d the phantom, plus a 2D image ("Flat", a 64 x 64 x 1 wavelet) and, if
+            VESSELTOUCH_SCENE_PNG names a file, that PNG opened by ParaView's reader ("Png")
+No session is created: the panel does what the user asks. Writes "ok" (or the error) to
+$VESSELTOUCH_DONE_FLAG.
+"""
+
+import os
+import traceback
+
+
+def main():
+    from paraview import simple
+    import vesseltouch
+
+    scene = os.environ.get("VESSELTOUCH_SCENE", "phantom")
+    view = simple.GetActiveViewOrCreate("RenderView")
+    phantom = simple.VesselPhantom(registrationName="Phantom", Shape="Tree",
+                                   Dimensions=[64, 64, 64])
+    vesseltouch.ShowAsMIP(phantom, view)
+    if scene == "volume+2d":
+        flat = simple.Wavelet(registrationName="Flat", WholeExtent=[0, 63, 0, 63, 0, 0])
+        flat.UpdatePipeline()
+        png = os.environ.get("VESSELTOUCH_SCENE_PNG")
+        if png:
+            simple.PNGSeriesReader(registrationName="Png", FileNames=[png]).UpdatePipeline()
+    simple.SetActiveSource(phantom)
+    simple.Render(view)
+
+
+flag = os.environ.get("VESSELTOUCH_DONE_FLAG")
+try:
+    main()
+    status = "ok\n"
+except Exception:  # the runner reports it
+    traceback.print_exc()
+    status = "error\n" + traceback.format_exc()
+if flag:
+    with open(flag, "w") as done:
+        done.write(status)
