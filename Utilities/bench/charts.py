@@ -14,6 +14,9 @@ Charts (each captioned with the machine, the commit and quick/full mode):
   stability_maps.png               stable/unstable over coupler k_c, LDGF lambda, force
                                    interpolation bound against loop rate, defaults marked
   render_fps.png                   agent frames/s cached vs full re-render over volume sizes
+  raw_centerline.png               raw angiograms from one seed: recall per radius class and
+                                   precision (worst phantom case), VesselCenterline vs
+                                   scikit-image, every case as dots; times beside
 A chart whose data is missing is skipped with a notice (exit status stays 0: check_results.py is
 the judge of completeness).
 """
@@ -276,6 +279,50 @@ def chart_render(out, results):
     save(fig, out, "render_fps.png", results)
 
 
+def chart_raw_centerline(out, results):
+    raw = load(out, "rawcenterline")
+    if not raw:
+        return
+    classes = [("recall_r0.5_0.6", "recall\nr 0.5-0.6"), ("recall_r0.6_0.75", "recall\n0.6-0.75"),
+               ("recall_r0.75_1", "recall\n0.75-1"), ("recall_r1_2", "recall\n1-2"),
+               ("recall_r2_up", "recall\n>= 2"), ("precision", "precision")]
+    cases = {t: c for t, c in raw["cases"].items() if "vc" in c and t != "large"}
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5), gridspec_kw={"width_ratios": [3, 1.2]})
+    x = np.arange(len(classes))
+    for offset, who, label, colour in ((-0.2, "vc", "VesselCenterline (seed, %s range)" % (
+            "automatic" if results.get("centerline.raw.automatic_range") else "Otsu"), "C0"),
+                                       (0.2, "skimage", "skimage skeletonize_3d (Otsu mask)",
+                                        "C1")):
+        prefix = "centerline.raw." if who == "vc" else "centerline.raw.skimage."
+        worst = [results.get(prefix + k, float("nan")) for k, _ in classes]
+        ax.bar(x + offset, worst, 0.38, color=colour, alpha=0.55, label=label + ": worst case")
+        for i, (k, _) in enumerate(classes):
+            values = [c[who][k] for c in cases.values()]
+            ax.plot(np.full(len(values), x[i] + offset), values, ".", color=colour, ms=4)
+    ax.axhline(0.95, color="0.4", ls=":", lw=1)
+    ax.axhline(0.99, color="0.4", ls="--", lw=1)
+    ax.set_xticks(x)
+    ax.set_xticklabels([l for _, l in classes], fontsize=8)
+    ax.set_ylim(max(0.0, min(0.8, np.nanmin([results.get("centerline.raw.precision", 1),
+                                             results.get("centerline.raw.skimage.precision", 1)])
+                             - 0.05)), 1.005)
+    ax.set_ylabel("fraction (radius r in voxels)")
+    ax.set_title("RawAngiogram phantoms (%d cases; dots: each case), targets 0.95 and 0.99" %
+                 len(cases), fontsize=10)
+    ax.legend(fontsize=8, loc="lower left")
+    labels = ["VesselCenterline", "skimage", "whole-volume\nvesselness"]
+    times = [results.get("centerline.raw.time_s", float("nan")),
+             results.get("centerline.raw.skimage.time_s", float("nan")),
+             results.get("centerline.raw.vesselness_whole_volume_s", float("nan"))]
+    bx.bar(range(3), times, color=["C0", "C1", "C2"])
+    bx.set_xticks(range(3))
+    bx.set_xticklabels(labels, fontsize=8)
+    bx.set_ylabel("seconds")
+    bx.set_title("CTA-sized volume (%.0f Mvoxels)" % (
+        results.get("centerline.raw.large.voxels", float("nan")) / 1e6), fontsize=10)
+    save(fig, out, "raw_centerline.png", results)
+
+
 def summary(out, results):
     """OUT/summary.md: the headline numbers as Markdown tables (copied by bench.sh --publish)."""
     r = results.get
@@ -292,6 +339,18 @@ def summary(out, results):
             r(p + "p95_dist_vox"), r(p + "coverage"), r(p + "skimage_seconds"),
             r(p + "skimage_peak_mb"), r(p + "skimage_mean_dist_vox"),
             r(p + "skimage_p95_dist_vox"), r(p + "skimage_coverage")))
+    if r("centerline.raw.precision") is not None:
+        lines += ["", "| raw angiograms (worst phantom case) | precision | recall r>=0.5 | "
+                  "recall r>=1 | recall 0.5-0.6 | mean dist vox | false points | CTA within 1 mm "
+                  "| s (CTA-sized) |", "|" + "---|" * 9]
+        for who, p in (("VesselCenterline", "centerline.raw."),
+                       ("skimage (Otsu)", "centerline.raw.skimage.")):
+            lines.append("| %s | %.3f | %.3f | %.3f | %.3f | %.2f | %d | %.3f | %.2f |" % (
+                who, r(p + "precision"), r(p + "recall_r0.5_up"), r(p + "recall_r1_up"),
+                r(p + "recall_r0.5_0.6"), r(p + "mean_dist_vox"), r(p + "false_vessel_points"),
+                r(p + "cta_aorta.coverage_1mm"), r(p + "time_s")))
+        lines.append("| whole-volume vesselness | | | | | | | | %.2f |" % r(
+            "centerline.raw.vesselness_whole_volume_s"))
     lines += ["", "| loop | achieved Hz | p50 / p99 / p99.9 period error us | max us | "
               "+render achieved Hz | +render p99 / p99.9 us | +render max us |", "|" + "---|" * 7]
     for rate in (1000, 2000, 5000, 10000):
@@ -336,7 +395,7 @@ def main():
         print("charts: no results: %s" % e, file=sys.stderr)
         return 1
     for chart in (chart_centerline_accuracy, chart_centerline_scaling, chart_force, chart_loop,
-                  chart_stability, chart_render, summary):
+                  chart_stability, chart_render, chart_raw_centerline, summary):
         try:
             chart(out, results)
         except Exception as e:  # noqa: BLE001  (one broken chart must not hide the others)

@@ -29,6 +29,14 @@ REQUIRED = (
        for m in ("coupler_kc_n_per_m", "ldgf_lambda_mm", "interpolation_n_per_s")]
     + ["render.agent_fps_cached", "render.agent_fps_full", "meta.quick"]
 )
+# Raw angiograms from one seed (issue 16): VesselCenterline and scikit-image, worst phantom case.
+RAW_MEASURES = ("precision", "recall_r0.5_0.6", "recall_r0.6_0.75", "recall_r0.75_1",
+                "recall_r1_2", "recall_r2_up", "recall_r0.5_up", "recall_r1_up", "mean_dist_vox",
+                "false_vessel_points", "time_s", "cta_aorta.coverage_1mm")
+REQUIRED += (["centerline.raw.%s" % m for m in RAW_MEASURES]
+             + ["centerline.raw.skimage.%s" % m for m in RAW_MEASURES]
+             + ["centerline.raw.vesselness_whole_volume_s", "centerline.raw.cta_aorta.time_s",
+                "centerline.raw.automatic_range"])
 STRINGS = ("meta.commit", "meta.machine")
 
 

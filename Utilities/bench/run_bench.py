@@ -3,7 +3,7 @@
 plus the raw data of each section (<out>/raw/*.json) for the charts. Called by Utilities/bench.sh.
 
     /usr/bin/python3 Utilities/bench/run_bench.py --build BUILD --out OUT [--quick]
-        [--only centerline haptic force stability render]
+        [--only centerline rawcenterline haptic force stability render]
 
 Sections (each in its own processes; a failed section is reported and its keys stay missing, so
 check_results.py fails):
@@ -11,6 +11,9 @@ check_results.py fails):
               Utilities/skeleton_benchmark.py's --skimage-child) on the helix and tree phantoms and
               the VMTK aorta; size scaling; sweeps of smoothing window, spur pruning, downsampling
               (when the filter has DownsampleFactor), vesselness on noisy raw intensities.
+  rawcenterline  VesselCenterline from one seed on raw angiograms (the RawAngiogram phantom family,
+              the raw VMTK CTA, a CTA-sized volume) beside scikit-image on an Otsu mask, and
+              whole-volume vesselness time (Utilities/bench/raw_centerline_bench.py)
   haptic      vesseltouch-loop-timing --json at 1, 2, 5, 10 kHz with and without a render load;
               vtouchHapticsBenchmark's tick benchmarks (1 M-point scene).
   force       vesseltouch-force-sweep (force error against loop rate, tick cost).
@@ -35,9 +38,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 sys.path.insert(0, os.path.join(ROOT, "Utilities"))
+sys.path.insert(0, HERE)
 import skeleton_benchmark as sb  # noqa: E402  (accuracy, VTP reader, aorta frame, skimage child)
 
-SECTIONS = ("centerline", "haptic", "force", "stability", "render")
+SECTIONS = ("centerline", "rawcenterline", "haptic", "force", "stability", "render")
 
 
 def log(*words):
@@ -211,6 +215,12 @@ def section_centerline(build, quick, tmp):
         log("centerline vesselness %s: off %.3f s, on %.3f s" % (shape, rows[0]["seconds"],
                                                                  rows[1]["seconds"]))
     return results, raw
+
+
+def section_rawcenterline(build, quick, tmp):
+    import raw_centerline_bench  # noqa: E402  (beside this file)
+
+    return raw_centerline_bench.run(build, quick, tmp, log)
 
 
 # ------------------------------------------------------------------------------------------------
