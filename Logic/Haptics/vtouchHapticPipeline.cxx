@@ -24,6 +24,8 @@ void HapticPipeline::release() noexcept
 void HapticPipeline::reset() noexcept
 {
   this->Trace.release();
+  this->Frame.reset();
+  this->LastApexSign = 1;
   this->ContactNeedsReset = true;
   for (ForceLaw* law : this->Laws)
   {
@@ -242,6 +244,18 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
     out.agentScreen_px = s.screen_px;
     out.position_World_mm = s.position_World_mm;
     out.tangent_World = s.tangent_World;
+    if (out.directionOfTravel != 0)
+    {
+      this->LastApexSign = out.directionOfTravel > 0 ? 1 : -1;
+    }
+    this->Frame.update(
+      s.position_World_mm, s.tangent_World, out.torsionAngle_rad, this->LastApexSign);
+    out.coneRoll_rad = this->Frame.coneRoll_rad();
+    out.coneNormal_World = this->Frame.coneNormal_World();
+  }
+  else
+  {
+    this->Frame.reset();
   }
   return out;
 }

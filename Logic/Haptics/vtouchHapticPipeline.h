@@ -2,6 +2,7 @@
 // loop and the offline session both call this (the same code path).
 #pragma once
 
+#include "vtouchAgentFrame.h"
 #include "vtouchChangeOfHeightForceLaw.h"
 #include "vtouchConstraintProxyForceLaw.h"
 #include "vtouchContactGate.h"
@@ -33,10 +34,15 @@ struct AgentState
   Vec3 tangent_World;            ///< unit tangent at the agent
   int directionOfTravel = 0;     ///< +1 toward increasing index, -1 decreasing, 0 at rest
   double torsionAngle_rad = 0.0; ///< accumulated torsion angle along the travelled arc
-  double zoneGain_N = 0.0;       ///< k(P)
-  Vec2 targetForce_N;            ///< force law output (after crossfade), before interpolation
-  Vec2 force_N;                  ///< force sent to the device, device frame
-  Vec2 hand_Device_mm;           ///< hand position as read
+  /// The cone's roll about its apex (relative to agentConeMatrix()'s zero-roll reference): a
+  /// rotation-minimising frame carried along the agent's path, rolled by the torsion angle
+  /// accumulated since contact (Yi & Hayward §7; AgentFrame). 0 when exploring.
+  double coneRoll_rad = 0.0;
+  Vec3 coneNormal_World;   ///< the cone's rolled normal (unit; zero when exploring)
+  double zoneGain_N = 0.0; ///< k(P)
+  Vec2 targetForce_N;      ///< force law output (after crossfade), before interpolation
+  Vec2 force_N;            ///< force sent to the device, device frame
+  Vec2 hand_Device_mm;     ///< hand position as read
 };
 
 struct TickInput
@@ -82,6 +88,8 @@ private:
   void release() noexcept;
 
   Tracer Trace;
+  AgentFrame Frame;
+  int LastApexSign = 1; // as agentApexDirection(): the last non-zero direction of travel
   ContactGate Contact;
   bool ContactNeedsReset = true;
   LdgfForceLaw Ldgf;

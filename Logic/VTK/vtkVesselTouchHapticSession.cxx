@@ -742,7 +742,7 @@ double* vtkVesselTouchHapticSession::GetAgentState()
     a.tangent_World.y,
     a.tangent_World.z,
     static_cast<double>(a.directionOfTravel),
-    a.torsionAngle_rad,
+    a.coneRoll_rad, // the cone's roll: RMF + integral of torsion (vtouch::AgentFrame)
     a.zoneGain_N,
     a.force_N.x,
     a.force_N.y,

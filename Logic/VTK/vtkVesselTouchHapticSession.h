@@ -220,8 +220,9 @@ public:
   /// p99.9, max (us), tick cost p50, p99, max (us).
   double* GetStatistics() VTK_SIZEHINT(12);
   /// time (s), tick, state (0 exploring, 1 tracing), force law, path, point, cursor x y (px),
-  /// position x y z (world mm), tangent x y z, direction of travel, torsion angle (rad), k(P) (N),
-  /// force x y (N), target force x y (N), hand x y (device mm).
+  /// position x y z (world mm), tangent x y z, direction of travel, cone roll (rad: the roll to
+  /// pass vtouch::agentConeMatrix, a rotation-minimising frame rolled by the integrated torsion),
+  /// k(P) (N), force x y (N), target force x y (N), hand x y (device mm).
   double* GetAgentState() VTK_SIZEHINT(23);
   /// The force last sent to the device, x y z (N, device frame, after the safety layer); zero
   /// when no device is open, and after Stop() (which zeroes the force before closing).

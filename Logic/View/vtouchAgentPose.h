@@ -16,8 +16,10 @@ using Matrix4x4 = std::array<double, 16>;
 
 /// The model matrix of the unit agent cone (axis +Z, centre at the origin, height 1) placed at
 /// `centre_World_mm`, its apex along `direction_World` (any non-zero length), rolled by
-/// `roll_rad` about it, scaled to `height_mm`. The zero-roll reference is world +Z made
-/// perpendicular to the axis (+X when the axis is within ~25 degrees of Z), as in
+/// `roll_rad` about it, scaled to `height_mm` (the session publishes as roll a rotation-minimising
+/// frame rolled by the integrated torsion, vtouch::AgentFrame, expressed against this function's
+/// reference, so the cone turns about the vessel at the rate tau). The zero-roll reference is world
+/// +Z made perpendicular to the axis (+X when the axis is within ~25 degrees of Z), as in
 /// vesseltouch.agent_view.agent_matrix. Returns false (and leaves `matrix` unchanged) for a zero
 /// or non-finite direction, a non-finite centre or roll, or a height that is not > 0.
 bool agentConeMatrix(const Vec3& centre_World_mm,

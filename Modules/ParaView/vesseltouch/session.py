@@ -380,7 +380,9 @@ class HapticSession(object):
         return dict(zip(_STATISTICS, self._info("StatisticsInfo")))
 
     def GetAgentState(self):
-        """The agent as last published by the haptic thread (or the last offline tick)."""
+        """The agent as last published by the haptic thread (or the last offline tick).
+        ``torsion_angle`` is the cone's roll about its apex: a rotation-minimising frame carried
+        along the agent's path, rolled by the integrated torsion (Yi & Hayward section 7)."""
         v = list(self._info("AgentStateInfo"))
         return {"time": v[0], "tick": int(v[1]), "state": int(v[2]), "force_law": int(v[3]),
                 "path": int(v[4]), "point": int(v[5]), "cursor": v[6:8], "position": v[8:11],
