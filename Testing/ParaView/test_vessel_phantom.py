@@ -73,6 +73,33 @@ n = 63.0
 expected = 3 * math.hypot(2 * math.pi * 0.3 * n, 0.25 * n)
 check.near(length, expected, 1e-3 * expected, "helix length")
 
+# Raw angiogram: a random tree in port 1 (Radius from the root's 4 voxels down to 0.5, Tangent),
+# vessels at the peak intensity over tissue, the root's first point on a bright voxel; the same
+# seed gives the same volume; Rician noise is a magnitude (never negative).
+def raw_angiogram(**kwargs):
+    p = VesselPhantom(Shape="Raw angiogram", Dimensions=[80, 80, 80], AngiogramSegments=60,  # noqa: F821
+                      OutputScalarType="Float", **kwargs)
+    p.UpdatePipeline()
+    return fetch(p, 0), fetch(p, 1)
+
+
+volume, tree = raw_angiogram(Seed=3)
+values = vtk_to_numpy(volume.GetPointData().GetScalars())
+radius = vtk_to_numpy(tree.GetPointData().GetArray("Radius"))
+check.true(tree.GetNumberOfLines() >= 30, "raw angiogram tree has %d vessels" % tree.GetNumberOfLines())
+check.near(float(radius.max()), 4.0, 1e-9, "raw angiogram root radius")
+check.true(radius.min() >= 0.5 - 1e-9, "raw angiogram radii >= 0.5 voxel (%g)" % radius.min())
+check.true(tree.GetPointData().GetArray("Tangent") is not None, "raw angiogram tangents")
+median = float(sorted(values[::97])[len(values[::97]) // 2])
+check.true(300 < median < 500, "raw angiogram background is tissue (median %g)" % median)
+root = volume.FindPoint(tree.GetPoint(0))
+check.true(values[root] > 800, "the root's first point is on the vessel (%g)" % values[root])
+again = vtk_to_numpy(raw_angiogram(Seed=3)[0].GetPointData().GetScalars())
+check.true((again == values).all(), "raw angiogram: same seed, same volume")
+rician = vtk_to_numpy(raw_angiogram(Seed=3, NoiseModel="Rician", TissueIntensity=0,
+                                    NoiseStandardDeviation=30)[0].GetPointData().GetScalars())
+check.true(rician.min() >= 0.0, "Rician noise gives magnitudes")
+
 # Bad input: a clear message in the output, an empty output, and no crash.
 bad_cases = {
     "zero size": "Dimensions=[0, 10, 10]",
@@ -81,6 +108,8 @@ bad_cases = {
     "NaN spacing": "Spacing=[1, float('nan'), 1]",
     "radius larger than the volume": "RadiusFraction=0.9",
     "absurd tree depth": "Shape='Tree', TreeDepth=40",
+    "raw angiogram without segments": "Shape='Raw angiogram', AngiogramSegments=0",
+    "raw angiogram too small for its root": "Shape='Raw angiogram', Dimensions=[30, 64, 64]",
 }
 for label, arguments in bad_cases.items():
     code = ("from paraview.simple import *\n"
