@@ -45,6 +45,11 @@ struct HapticParameters
   double zoneGain_N = 1.0;        ///< gain k in the saturation zone, N. Default 1 N
   double zoneZeroBelow = 0.05;    ///< end of the zero-force zone (normalized pressure). 0.05
   double zoneSaturateAbove = 0.5; ///< start of the saturation zone. Default 0.5
+  /// Zero-force zone of devices without pressure/z (IdleGate): a handle resting within
+  /// idleRadius_mm for idleDwell_s is silenced (fade idleRamp_s); moving out restores the force.
+  double idleRadius_mm = 1.0; ///< Default 1 mm
+  double idleDwell_s = 1.5;   ///< 0 disables. Default 1.5 s
+  double idleRamp_s = 0.05;   ///< Default 0.05 s
 
   // --- cursor mapping, zoom, re-indexing ---
   /// Cursor pixels per hand millimetre at zoom 1. Default 4 px/mm (a 160 mm device sweeps 640 px).

@@ -35,6 +35,7 @@ void HapticPipeline::reset() noexcept
     }
   }
   this->Interpolator.reset();
+  this->Idle.reset();
   this->HasCursor = false;
   this->HasHand = false;
   this->LastButtons = 0;
@@ -69,6 +70,9 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Zones.zeroBelow = p.zoneZeroBelow;
   this->Zones.saturateAbove = p.zoneSaturateAbove;
   this->Interpolator.maxRate_N_per_s = p.maxForceRate_N_per_s;
+  this->Idle.radius_mm = p.idleRadius_mm;
+  this->Idle.dwell_s = p.idleDwell_s;
+  this->Idle.ramp_s = p.idleRamp_s;
   this->Trace.deadBand_px = std::max(0.0, p.tracerDeadBand_px);
   this->Contact.dwell_s = std::isfinite(p.contactDwell_s) ? std::max(0.0, p.contactDwell_s) : 0.05;
   this->Contact.approachAtStart = p.contactApproachAtStart;
@@ -212,9 +216,17 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
       dev.velocity_Device_mm_per_s.y };
     fin.pixelsPerHandMm = pxPerMm;
     fin.zoneGain_N = this->Zones.gain(dev.pressure);
+    fin.zoneFraction = this->Zones.fraction(dev.pressure);
+    if (!hasPressure)
+    {
+      // §5.2's zero-force zone for devices that cannot sense the hand's push: a dwell gate.
+      const double idle = this->Idle.update(hand, in.dt_s);
+      fin.zoneGain_N *= idle;
+      fin.zoneFraction *= idle;
+      out.idle = this->Idle.idle();
+    }
     fin.maxZoneGain_N = std::max(0.0, this->Zones.gain_N);
     fin.slopeWindow_mm = vm->topology().slopeWindow_mm();
-    fin.zoneFraction = this->Zones.fraction(dev.pressure);
     fin.dt_s = in.dt_s;
     fin.capabilities = in.capabilities;
     ForceRequest req;

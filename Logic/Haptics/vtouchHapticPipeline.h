@@ -8,6 +8,7 @@
 #include "vtouchContactGate.h"
 #include "vtouchForceInterpolator.h"
 #include "vtouchForceZones.h"
+#include "vtouchIdleGate.h"
 #include "vtouchHapticParameters.h"
 #include "vtouchLateralGradientForceLaw.h"
 #include "vtouchLdgfForceLaw.h"
@@ -26,13 +27,14 @@ struct AgentState
   InteractionState state = InteractionState::Exploring;
   ForceLawId forceLaw = ForceLawId::Ldgf;
   bool reindexing = false;
-  int path = -1;                 ///< agent path (-1 when exploring)
-  int point = -1;                ///< nearest point index within the path
-  Vec2 cursor_px;                ///< cursor on screen (bottom-left origin)
-  Vec2 agentScreen_px;           ///< agent on screen
-  Vec3 position_World_mm;        ///< agent on the centerline, world frame
-  Vec3 tangent_World;            ///< unit tangent at the agent
-  int directionOfTravel = 0;     ///< +1 toward increasing index, -1 decreasing, 0 at rest
+  bool idle = false;         ///< a device without pressure left resting: force silenced (IdleGate)
+  int path = -1;             ///< agent path (-1 when exploring)
+  int point = -1;            ///< nearest point index within the path
+  Vec2 cursor_px;            ///< cursor on screen (bottom-left origin)
+  Vec2 agentScreen_px;       ///< agent on screen
+  Vec3 position_World_mm;    ///< agent on the centerline, world frame
+  Vec3 tangent_World;        ///< unit tangent at the agent
+  int directionOfTravel = 0; ///< +1 toward increasing index, -1 decreasing, 0 at rest
   double torsionAngle_rad = 0.0; ///< accumulated torsion angle along the travelled arc
   /// The cone's roll about its apex (relative to agentConeMatrix()'s zero-roll reference): a
   /// rotation-minimising frame carried along the agent's path, rolled by the torsion angle
@@ -98,6 +100,7 @@ private:
   ConstraintProxyForceLaw Proxy;
   ForceLaw* Laws[kForceLawCount] = {};
   ForceZones Zones;
+  IdleGate Idle; // the zero-force zone of devices without pressure
   ForceInterpolator Interpolator;
 
   ForceLawId Active = ForceLawId::Ldgf;

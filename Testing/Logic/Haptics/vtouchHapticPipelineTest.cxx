@@ -388,6 +388,67 @@ TEST(HapticPipeline, CrossedVesselDoesNotCaptureOnTheWayToAnother)
   EXPECT_EQ(s.path, 0);
 }
 
+TEST(HapticPipeline, UnattendedHandleWithoutPressureIsSilencedAfterDwell)
+{
+  // Yi & Hayward §5.2: "a zero-force zone prevents any activity when the device is left
+  // unattended". A device without pressure/z (caps.hasPressure false) gets it from a dwell gate:
+  // resting within 1 mm for 1.5 s fades the force out over 50 ms; moving out brings it back.
+  PipelineRig rig;
+  rig.caps.hasPressure = false;
+  rig.view = buildView(straightLine({ -20, 0, 0 }, { 20, 0, 20 }, 0.25), topCamera({ 0, 0, 10 }));
+  rig.params.maxForceRate_N_per_s = 1e9; // see the gate, not the interpolation
+  AgentState s = rig.step();
+  ASSERT_EQ(s.state, InteractionState::Tracing);
+  double full = 0.0;
+  int silencedAt = -1;
+  for (int k = 1; k < 2000; ++k)
+  {
+    // A resting hand with 0.2 mm of tremor: within the 1 mm radius.
+    rig.device.position_Device_mm.x = 0.2 * std::sin(0.05 * k);
+    s = rig.step();
+    if (k == 100)
+    {
+      full = s.force_N.norm();
+    }
+    if (silencedAt < 0 && s.force_N.norm() == 0.0)
+    {
+      silencedAt = k;
+    }
+  }
+  ASSERT_GT(full, 0.3);
+  EXPECT_TRUE(s.idle);
+  EXPECT_EQ(s.force_N.norm(), 0.0);
+  EXPECT_GE(silencedAt, 1500 + 45); // the dwell, then the fade
+  EXPECT_LE(silencedAt, 1500 + 55);
+  // Moving 2 mm wakes it: the force fades back in (no step).
+  rig.device.position_Device_mm.x = 0.0;
+  rig.device.position_Device_mm.y = 0.5; // 2 px across the vessel: the agent stays put
+  s = rig.step();
+  rig.device.position_Device_mm.y = -1.5;
+  double previous = s.force_N.norm();
+  double worst = 0.0;
+  for (int k = 0; k < 100; ++k)
+  {
+    s = rig.step();
+    worst = std::max(worst, s.force_N.norm() - previous);
+    previous = s.force_N.norm();
+  }
+  EXPECT_FALSE(s.idle);
+  EXPECT_NEAR(s.force_N.norm(), full, 0.05 * full);
+  EXPECT_LE(worst, full * 0.001 / 0.05 + 0.02 * full);
+  // A device with pressure keeps its own zero-force zone: no dwell gate.
+  PipelineRig pressure;
+  pressure.caps.hasPressure = true;
+  pressure.device.pressure = 1.0;
+  pressure.view = rig.view;
+  for (int k = 0; k < 2000; ++k)
+  {
+    s = pressure.step();
+  }
+  EXPECT_FALSE(s.idle);
+  EXPECT_GT(s.force_N.norm(), 0.3);
+}
+
 TEST(HapticPipeline, ViewChangeWhileTracingKeepsAgentAndBoundsForceStep)
 {
   // The camera turns by 60 degrees in one frame: the slope under the agent jumps, the rendered
