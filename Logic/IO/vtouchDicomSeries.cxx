@@ -1,6 +1,7 @@
 #include "vtouchDicomSeries.h"
 
 #include "vtouchImageIOVolumeSource.h"
+#include "vtouchRawExtentRead.h"
 #include "vtouchVolumeFileChecks.h"
 
 #include <itkGDCMImageIO.h>
@@ -164,8 +165,9 @@ struct Slice
   double along_mm; // position along the slice normal
 };
 
-/// Reads the slices of one series straight into the caller's buffer. GDCM parses each file three
-/// times (ITK's header read, the length check, ITK's pixel read): 400 CT slices take ~0.5 s.
+/// Reads the slices of one series straight into the caller's buffer; a part of the volume opens
+/// only the files of its slices. GDCM parses each file three times (ITK's header read, the length
+/// check, ITK's pixel read): 400 CT slices take ~0.5 s.
 class DicomSeriesSource : public VolumeSource
 {
 public:
@@ -175,49 +177,76 @@ public:
     this->Header = std::move(header);
   }
 
-  bool read(void* buffer, std::size_t bytes, const VolumeProgress& progress) override
+  bool readExtent(const VoxelExtent& extent,
+    void* buffer,
+    std::size_t bytes,
+    const VolumeProgress& progress) override
   {
+    this->checkExtentRequest(extent, buffer, bytes);
+    this->LastRead = VolumeReadStatistics();
     const VolumeGeometry& g = this->Header.geometry;
-    const std::size_t sliceBytes =
-      g.dimensions[0] * g.dimensions[1] * voxelSize(this->Header.voxelType);
-    if (!buffer || bytes < this->Header.byteCount())
-    {
-      throw VolumeIOError("internal error: the voxel buffer is too small");
-    }
+    const std::size_t voxelBytes = voxelSize(this->Header.voxelType);
+    const std::size_t sliceBytes = g.dimensions[0] * g.dimensions[1] * voxelBytes;
+    const bool wholeSlices =
+      extent.size()[0] == g.dimensions[0] && extent.size()[1] == g.dimensions[1];
+    // Only the files of the extent's slices are opened; a slice is decoded whole (DICOM pixel data
+    // may be compressed), into the buffer directly when the extent spans whole slices.
+    std::vector<char> slice(wholeSlices ? 0 : sliceBytes);
+    const std::array<std::size_t, 3> sliceDims{ { g.dimensions[0], g.dimensions[1], 1 } };
+    VoxelExtent inSlice = extent;
+    inSlice.first[2] = inSlice.last[2] = 0;
     char* out = static_cast<char*>(buffer);
-    for (std::size_t k = 0; k < this->Files.size(); ++k)
+    const std::size_t outSliceBytes = extent.size()[0] * extent.size()[1] * voxelBytes;
+    const std::size_t count = extent.size()[2];
+    for (std::size_t k = extent.first[2]; k <= extent.last[2]; ++k)
     {
-      if (progress && !progress(static_cast<double>(k) / static_cast<double>(this->Files.size())))
+      if (progress && !progress(static_cast<double>(k - extent.first[2]) / count))
       {
         return false;
       }
-      const std::string& file = this->Files[k];
-      itk::GDCMImageIO::Pointer io = readSliceHeader(file);
-      // Checked before every read: GDCM writes a whole slice into the buffer.
-      const bool sameSize = io->GetDimensions(0) == g.dimensions[0] &&
-                            io->GetDimensions(1) == g.dimensions[1] &&
-                            (io->GetNumberOfDimensions() < 3 || io->GetDimensions(2) == 1);
-      if (!sameSize || io->GetNumberOfComponents() != 1 ||
-          voxelTypeFromITK(io->GetComponentType(), file) != this->Header.voxelType)
+      char* target = wholeSlices ? out : slice.data();
+      this->readSlice(this->Files[k], target);
+      if (!wholeSlices)
       {
-        throw VolumeIOError("the slice '" + file +
-                            "' differs from the first slice of its series in size or pixel type");
+        copyExtent(slice.data(), sliceDims, voxelBytes, inSlice, out);
       }
-      checkDicomSliceComplete(file);
-      try
-      {
-        io->Read(out + k * sliceBytes);
-      }
-      catch (const itk::ExceptionObject& e)
-      {
-        throw VolumeIOError("cannot read the pixels of '" + file +
-                            "' (truncated or corrupt file?): " + e.GetDescription());
-      }
+      out += outSliceBytes;
+      this->LastRead.filesRead += 1;
+      this->LastRead.bytesRead += sliceBytes;
     }
     return progress ? progress(1.0) : true;
   }
 
+  bool readsExtentsAlone() const override { return true; }
+
 private:
+  /// Reads one whole slice of the series into `target` (sliceBytes).
+  void readSlice(const std::string& file, char* target) const
+  {
+    const VolumeGeometry& g = this->Header.geometry;
+    itk::GDCMImageIO::Pointer io = readSliceHeader(file);
+    // Checked before every read: GDCM writes a whole slice into the buffer.
+    const bool sameSize = io->GetDimensions(0) == g.dimensions[0] &&
+                          io->GetDimensions(1) == g.dimensions[1] &&
+                          (io->GetNumberOfDimensions() < 3 || io->GetDimensions(2) == 1);
+    if (!sameSize || io->GetNumberOfComponents() != 1 ||
+        voxelTypeFromITK(io->GetComponentType(), file) != this->Header.voxelType)
+    {
+      throw VolumeIOError("the slice '" + file +
+                          "' differs from the first slice of its series in size or pixel type");
+    }
+    checkDicomSliceComplete(file);
+    try
+    {
+      io->Read(target);
+    }
+    catch (const itk::ExceptionObject& e)
+    {
+      throw VolumeIOError("cannot read the pixels of '" + file +
+                          "' (truncated or corrupt file?): " + e.GetDescription());
+    }
+  }
+
   std::vector<std::string> Files; // ordered by position along the slice normal
 };
 

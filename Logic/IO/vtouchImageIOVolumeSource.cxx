@@ -1,10 +1,12 @@
 #include "vtouchImageIOVolumeSource.h"
 
+#include "vtouchRawExtentRead.h"
 #include "vtouchVolumeFileChecks.h"
 
 #include <itkImageIORegion.h>
 
 #include <sstream>
+#include <vector>
 
 namespace vtouch
 {
@@ -125,14 +127,44 @@ ImageIOVolumeSource::ImageIOVolumeSource(itk::ImageIOBase::Pointer io,
   {
     checkMetaImageComplete(path, this->Header.byteCount());
   }
+  if (name != "DICOM multi-frame")
+  {
+    this->Layout = findRawVoxelLayout(path, this->Header);
+  }
 }
 
-bool ImageIOVolumeSource::read(void* buffer, std::size_t bytes, const VolumeProgress& progress)
+bool ImageIOVolumeSource::readExtent(const VoxelExtent& extent,
+  void* buffer,
+  std::size_t bytes,
+  const VolumeProgress& progress)
 {
-  if (!buffer || bytes < this->Header.byteCount())
+  this->checkExtentRequest(extent, buffer, bytes);
+  const VolumeGeometry& g = this->Header.geometry;
+  const std::size_t voxelBytes = voxelSize(this->Header.voxelType);
+  if (this->Layout)
   {
-    throw VolumeIOError("internal error: the voxel buffer is too small");
+    return readRawExtent(
+      *this->Layout, g.dimensions, voxelBytes, extent, buffer, progress, this->LastRead);
   }
+  this->LastRead = VolumeReadStatistics();
+  this->LastRead.filesRead = 1;
+  this->LastRead.bytesRead = this->Header.byteCount();
+  if (extent.voxelCount() == g.voxelCount())
+  {
+    return this->readWholeWithITK(buffer, progress);
+  }
+  // A compressed file has no random access: decode it whole, keep the part.
+  std::vector<char> whole(this->Header.byteCount());
+  if (!this->readWholeWithITK(whole.data(), progress))
+  {
+    return false;
+  }
+  copyExtent(whole.data(), g.dimensions, voxelBytes, extent, buffer);
+  return true;
+}
+
+bool ImageIOVolumeSource::readWholeWithITK(void* buffer, const VolumeProgress& progress)
+{
   if (progress && !progress(0.0))
   {
     return false;

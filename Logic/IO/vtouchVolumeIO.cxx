@@ -102,6 +102,70 @@ std::size_t VolumeHeader::byteCount() const
   return this->geometry.voxelCount() * voxelSize(this->voxelType);
 }
 
+VoxelExtent VoxelExtent::whole(const std::array<std::size_t, 3>& dimensions)
+{
+  VoxelExtent extent;
+  for (int a = 0; a < 3; ++a)
+  {
+    extent.last[a] = dimensions[a] > 0 ? dimensions[a] - 1 : 0;
+  }
+  return extent;
+}
+
+std::array<std::size_t, 3> VoxelExtent::size() const
+{
+  std::array<std::size_t, 3> n{ { 0, 0, 0 } };
+  for (int a = 0; a < 3; ++a)
+  {
+    n[a] = this->last[a] >= this->first[a] ? this->last[a] - this->first[a] + 1 : 0;
+  }
+  return n;
+}
+
+std::size_t VoxelExtent::voxelCount() const
+{
+  const std::array<std::size_t, 3> n = this->size();
+  return n[0] * n[1] * n[2];
+}
+
+bool VoxelExtent::isWithin(const std::array<std::size_t, 3>& dimensions) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (this->first[a] > this->last[a] || this->last[a] >= dimensions[a])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool VolumeSource::read(void* buffer, std::size_t bytes, const VolumeProgress& progress)
+{
+  return this->readExtent(
+    VoxelExtent::whole(this->Header.geometry.dimensions), buffer, bytes, progress);
+}
+
+void VolumeSource::checkExtentRequest(const VoxelExtent& extent,
+  const void* buffer,
+  std::size_t bytes) const
+{
+  const std::array<std::size_t, 3>& dims = this->Header.geometry.dimensions;
+  if (!extent.isWithin(dims))
+  {
+    throw VolumeIOError("the requested voxel extent [" + std::to_string(extent.first[0]) + ".." +
+                        std::to_string(extent.last[0]) + ", " + std::to_string(extent.first[1]) +
+                        ".." + std::to_string(extent.last[1]) + ", " +
+                        std::to_string(extent.first[2]) + ".." + std::to_string(extent.last[2]) +
+                        "] is not inside the " + std::to_string(dims[0]) + " x " +
+                        std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + " volume");
+  }
+  if (!buffer || bytes < extent.voxelCount() * voxelSize(this->Header.voxelType))
+  {
+    throw VolumeIOError("internal error: the voxel buffer is too small");
+  }
+}
+
 namespace
 {
 enum class FileKind

@@ -9,11 +9,16 @@
 //
 // Reading is two-phase so the caller owns the voxel memory: openVolume() reads the header (cheap),
 // the caller allocates header().byteCount() bytes, VolumeSource::read() fills them, x fastest.
+// A part of the volume (one rank's piece in a parallel pipeline) is read with readExtent(): for
+// uncompressed NIfTI, NRRD and MetaImage only that part's bytes are read from the file, for a DICOM
+// series only the files of its slices; compressed files must be decoded whole (see
+// readsExtentsAlone()).
 #ifndef vtouchVolumeIO_h
 #define vtouchVolumeIO_h
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -86,6 +91,29 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/// A box of voxel indices, bounds included on both ends per axis (a VTK extent without the signs).
+struct VoxelExtent
+{
+  std::array<std::size_t, 3> first{ { 0, 0, 0 } };
+  std::array<std::size_t, 3> last{ { 0, 0, 0 } };
+
+  /// The whole of a volume of `dimensions` (each > 0).
+  static VoxelExtent whole(const std::array<std::size_t, 3>& dimensions);
+  std::array<std::size_t, 3> size() const;
+  std::size_t voxelCount() const;
+  /// first <= last on every axis and last < dimensions.
+  bool isWithin(const std::array<std::size_t, 3>& dimensions) const;
+};
+
+/// What the last read took from the files, for tests and benchmarks of streamed reads.
+struct VolumeReadStatistics
+{
+  /// Voxel bytes read from disk (uncompressed data), or decoded (compressed data, read whole).
+  std::uint64_t bytesRead = 0;
+  /// Files opened for voxel data (one per DICOM slice read).
+  std::size_t filesRead = 0;
+};
+
 /// Progress in [0, 1]; return false to abort the read.
 using VolumeProgress = std::function<bool(double fraction)>;
 
@@ -97,10 +125,26 @@ public:
   const VolumeHeader& header() const { return this->Header; }
   /// Reads every voxel into `buffer` (at least header().byteCount() bytes, x fastest then y then
   /// z). Returns false when `progress` asked to abort. Throws VolumeIOError on a bad file.
-  virtual bool read(void* buffer, std::size_t bytes, const VolumeProgress& progress) = 0;
+  bool read(void* buffer, std::size_t bytes, const VolumeProgress& progress);
+  /// Reads the voxels of `extent` into `buffer` (at least extent.voxelCount() voxels, x fastest
+  /// then y then z). Returns false when `progress` asked to abort. Throws VolumeIOError on a bad
+  /// file or an extent outside the volume.
+  virtual bool readExtent(const VoxelExtent& extent,
+    void* buffer,
+    std::size_t bytes,
+    const VolumeProgress& progress) = 0;
+  /// True when readExtent() reads no more of the file than the extent needs (uncompressed voxels,
+  /// DICOM slices); false when the file must be decoded whole (gzip, NIfTI intensity scaling).
+  virtual bool readsExtentsAlone() const = 0;
+  /// What the last read took from the files.
+  const VolumeReadStatistics& lastReadStatistics() const { return this->LastRead; }
 
 protected:
+  /// Throws VolumeIOError unless `extent` lies in the volume and `bytes` can hold it.
+  void checkExtentRequest(const VoxelExtent& extent, const void* buffer, std::size_t bytes) const;
+
   VolumeHeader Header;
+  VolumeReadStatistics LastRead;
 };
 
 struct VolumeOpenOptions

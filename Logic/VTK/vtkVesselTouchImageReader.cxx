@@ -3,15 +3,20 @@
 #include "vtouchVolumeIO.h"
 
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
@@ -161,6 +166,7 @@ int vtkVesselTouchImageReader::RequestInformation(vtkInformation*,
   {
     this->UpdateSeriesList();
     this->OpenError = this->Open();
+    this->WarnedWholeDecode = false;
     this->OpenTime.Modified();
   }
   const std::string& error = this->OpenError;
@@ -186,6 +192,7 @@ int vtkVesselTouchImageReader::RequestInformation(vtkInformation*,
   outInfo->Set(vtkDataObject::SPACING(), g.spacing_mm.data(), 3);
   outInfo->Set(vtkDataObject::ORIGIN(), g.origin_mm.data(), 3);
   outInfo->Set(vtkDataObject::DIRECTION(), g.direction.data(), 9);
+  outInfo->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, vtkTypeOf(header.voxelType), 1);
   return 1;
 }
@@ -208,19 +215,57 @@ int vtkVesselTouchImageReader::RequestData(vtkInformation*,
   const vtouch::VolumeHeader& header = this->Source->header();
   const vtouch::VolumeGeometry g = header.geometry.inFrame(
     this->OutputFrame == RAS ? vtouch::WorldFrame::RAS : vtouch::WorldFrame::LPS);
+  // The piece asked for (the whole volume in a serial pipeline), clipped to the volume.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int extent[6] = { 0,
+    static_cast<int>(g.dimensions[0]) - 1,
+    0,
+    static_cast<int>(g.dimensions[1]) - 1,
+    0,
+    static_cast<int>(g.dimensions[2]) - 1 };
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    int asked[6];
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
+    for (int a = 0; a < 3; ++a)
+    {
+      extent[2 * a] = std::max(extent[2 * a], asked[2 * a]);
+      extent[2 * a + 1] = std::min(extent[2 * a + 1], asked[2 * a + 1]);
+    }
+  }
+  vtouch::VoxelExtent box;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[2 * a] > extent[2 * a + 1])
+    {
+      return 1; // an empty piece (more ranks than slices): an empty output
+    }
+    box.first[a] = static_cast<std::size_t>(extent[2 * a]);
+    box.last[a] = static_cast<std::size_t>(extent[2 * a + 1]);
+  }
+  if (!this->Source->readsExtentsAlone() && box.voxelCount() < g.voxelCount() &&
+      !this->WarnedWholeDecode)
+  {
+    vtkWarningMacro(
+      "VesselTouch reader: '"
+      << this->FileName
+      << "' is compressed: each piece of a parallel read decodes the whole file. Store it "
+         "uncompressed (.nii, raw NRRD or MetaImage) so that each rank reads only its piece.");
+    this->WarnedWholeDecode = true;
+  }
 
   vtkSmartPointer<vtkDataArray> scalars;
   scalars.TakeReference(vtkDataArray::CreateDataArray(vtkTypeOf(header.voxelType)));
   scalars->SetName("ImageScalars");
   scalars->SetNumberOfComponents(1);
   // The file is read straight into this array: no intermediate ITK image, no copy.
-  if (!scalars->Resize(static_cast<vtkIdType>(g.voxelCount())))
+  const std::size_t bytes = box.voxelCount() * vtouch::voxelSize(header.voxelType);
+  if (!scalars->Resize(static_cast<vtkIdType>(box.voxelCount())))
   {
-    vtkErrorMacro(
-      "VesselTouch reader: cannot allocate " << header.byteCount() << " bytes for the volume.");
+    vtkErrorMacro("VesselTouch reader: cannot allocate " << bytes << " bytes for the volume.");
     return 1;
   }
-  scalars->SetNumberOfTuples(static_cast<vtkIdType>(g.voxelCount()));
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(box.voxelCount()));
   auto progress = [this](double fraction)
   {
     this->UpdateProgress(fraction);
@@ -228,7 +273,7 @@ int vtkVesselTouchImageReader::RequestData(vtkInformation*,
   };
   try
   {
-    if (!this->Source->read(scalars->GetVoidPointer(0), header.byteCount(), progress))
+    if (!this->Source->readExtent(box, scalars->GetVoidPointer(0), bytes, progress))
     {
       return 1; // aborted by the user: an empty output, no error
     }
@@ -238,14 +283,46 @@ int vtkVesselTouchImageReader::RequestData(vtkInformation*,
     vtkErrorMacro("VesselTouch reader: " << e.what() << ". The output is empty.");
     return 1;
   }
-  output->SetDimensions(static_cast<int>(g.dimensions[0]),
-    static_cast<int>(g.dimensions[1]),
-    static_cast<int>(g.dimensions[2]));
+  output->SetExtent(extent);
   output->SetSpacing(g.spacing_mm.data());
   output->SetOrigin(g.origin_mm.data());
   output->SetDirectionMatrix(g.direction.data());
   output->GetPointData()->SetScalars(scalars);
+  this->AddReadStatistics(output);
   return 1;
+}
+
+void vtkVesselTouchImageReader::AddReadStatistics(vtkImageData* output)
+{
+  // What this piece cost, where a parallel pipeline's rank can report it (field data travels with
+  // the piece; information properties would only show the first rank's).
+  vtkNew<vtkDoubleArray> bytes;
+  bytes->SetName("ReaderVoxelBytesRead");
+  bytes->InsertNextValue(this->GetLastReadBytes());
+  vtkNew<vtkIntArray> files;
+  files->SetName("ReaderFilesRead");
+  files->InsertNextValue(this->GetLastReadFiles());
+  vtkNew<vtkIntArray> alone;
+  alone->SetName("ReaderReadsPiecesAlone");
+  alone->InsertNextValue(this->GetReadsPiecesAlone());
+  output->GetFieldData()->AddArray(bytes);
+  output->GetFieldData()->AddArray(files);
+  output->GetFieldData()->AddArray(alone);
+}
+
+int vtkVesselTouchImageReader::GetReadsPiecesAlone()
+{
+  return this->Source && this->Source->readsExtentsAlone() ? 1 : 0;
+}
+
+double vtkVesselTouchImageReader::GetLastReadBytes()
+{
+  return this->Source ? static_cast<double>(this->Source->lastReadStatistics().bytesRead) : 0.0;
+}
+
+int vtkVesselTouchImageReader::GetLastReadFiles()
+{
+  return this->Source ? static_cast<int>(this->Source->lastReadStatistics().filesRead) : 0;
 }
 
 void vtkVesselTouchImageReader::PrintSelf(ostream& os, vtkIndent indent)

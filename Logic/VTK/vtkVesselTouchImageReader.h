@@ -7,6 +7,12 @@
 // into the output array (no intermediate copy, except inside ITK's NIfTI library). Bad input
 // (missing or corrupt file, 2D or 4D image, colour pixels, unsupported pixel type, a DICOM series
 // with gaps, duplicates or mixed orientations) gives a vtkErrorMacro and an empty output.
+//
+// Streaming: the reader produces sub-extents (CAN_PRODUCE_SUB_EXTENT), so in a parallel pipeline
+// (pvserver under MPI) each rank asks for its piece and reads only that: the piece's bytes of an
+// uncompressed NIfTI, NRRD or MetaImage file, the files of its slices of a DICOM series. A
+// compressed file (.nii.gz, gzip NRRD, compressed MetaImage) is decoded whole by each rank and cut
+// (a warning says so once per file); GetReadsPiecesAlone() tells which case a file is.
 #ifndef vtkVesselTouchImageReader_h
 #define vtkVesselTouchImageReader_h
 
@@ -18,6 +24,7 @@
 #include <memory> // for std::unique_ptr
 #include <string> // for std::string
 
+class vtkImageData;
 class vtkStringArray;
 
 namespace vtouch
@@ -63,6 +70,15 @@ public:
   /// and the voxel type, or empty when the file could not be opened.
   const char* GetFileFormat() { return this->FileFormat.c_str(); }
 
+  /// After UpdateInformation: 1 when a piece of this file is read without reading the rest
+  /// (uncompressed voxels, DICOM slices), 0 when every piece decodes the whole file.
+  int GetReadsPiecesAlone();
+
+  /// After an update: voxel bytes the last update read from disk (or decoded, for a compressed
+  /// file), and the number of files it opened for voxels. For tests and benchmarks of streaming.
+  double GetLastReadBytes();
+  int GetLastReadFiles();
+
 protected:
   vtkVesselTouchImageReader();
   ~vtkVesselTouchImageReader() override;
@@ -74,6 +90,9 @@ private:
   vtkVesselTouchImageReader(const vtkVesselTouchImageReader&) = delete;
   void operator=(const vtkVesselTouchImageReader&) = delete;
 
+  /// The last read's statistics as field data: ReaderVoxelBytesRead, ReaderFilesRead,
+  /// ReaderReadsPiecesAlone (one value each).
+  void AddReadStatistics(vtkImageData* output);
   /// Opens the file (header only); empty on success, else the reason.
   std::string Open();
   void UpdateSeriesList();
@@ -83,7 +102,8 @@ private:
   int OutputFrame = LPS;
   std::string FileFormat;
   std::string OpenError;
-  vtkTimeStamp OpenTime; // when Open() last ran; reopened only after a property change
+  vtkTimeStamp OpenTime;          // when Open() last ran; reopened only after a property change
+  bool WarnedWholeDecode = false; // the compressed-file warning, once per opened file
   std::unique_ptr<vtouch::VolumeSource> Source;
   vtkNew<vtkStringArray> SeriesUIDs;
   vtkNew<vtkStringArray> SeriesLines;

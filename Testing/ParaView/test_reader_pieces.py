@@ -1,0 +1,145 @@
+"""Integration test: the VesselTouch reader streams pieces (issue 19, "readers that stream").
+
+Run as ``pvpython test_reader_pieces.py`` with VESSELTOUCH_PLUGIN set (see test_readers.py for the
+test volume writer). A parallel pipeline asks each rank for piece r of n; the reader must answer
+with a sub-extent that it read alone.
+
+What is checked, for an uncompressed NRRD, NIfTI and MetaImage file, a DICOM series and a .nii.gz:
+- the pieces r = 0..n-1 of n (n = 2, 3, 5) tile the whole extent (by cells, VTK's convention: neighbours share one boundary layer of points), and every
+  voxel of every piece holds the value the whole read gives at that index;
+- uncompressed files read exactly their piece's bytes (field data ReaderVoxelBytesRead), a DICOM
+  series opens only the files of its piece's slices (ReaderFilesRead), and the reader says which
+  files stream (ReaderReadsPiecesAlone: 0 for .nii.gz, which decodes the whole file per piece);
+- the origin, spacing and direction of a piece are those of the whole volume.
+Exits non-zero on any failure.
+"""
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+from paraview.simple import Delete, LoadPlugin, OpenDataFile
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+PLUGIN = os.environ["VESSELTOUCH_PLUGIN"]
+LoadPlugin(PLUGIN, ns=globals())
+
+FAILURES = []
+
+
+def check(condition, message):
+    if not condition:
+        FAILURES.append(message)
+        print("FAIL:", message)
+
+
+def writer():
+    path = os.environ.get("VESSELTOUCH_TEST_VOLUME_WRITER")
+    if not path:
+        build = os.path.abspath(os.path.join(os.path.dirname(PLUGIN), *[os.pardir] * 4))
+        path = os.path.join(build, "Testing", "Logic", "IO", "vtouchWriteTestVolume")
+    return path
+
+
+def reader_for(path):
+    if os.path.isdir(path):
+        proxy = VesselTouchDICOMSeriesReader(FileName=path)  # noqa: F821 (from LoadPlugin)
+    else:
+        proxy = OpenDataFile(path)  # the VesselTouch reader for every extension (test_readers.py)
+    return proxy, proxy.GetClientSideObject()
+
+
+def field(image, name):
+    return image.GetFieldData().GetArray(name).GetValue(0)
+
+
+def as_array(image):
+    dims = [image.GetExtent()[2 * a + 1] - image.GetExtent()[2 * a] + 1 for a in range(3)]
+    values = vtk_to_numpy(image.GetPointData().GetScalars())
+    return values.reshape(dims[2], dims[1], dims[0])  # [k, j, i]
+
+
+def check_pieces(name, path, streams, dicom=False):
+    proxy, reader = reader_for(path)
+    reader.UpdatePiece(0, 1, 0)
+    whole_image = reader.GetOutput()
+    whole = as_array(whole_image).copy()
+    whole_extent = whole_image.GetExtent()
+    origin, spacing = whole_image.GetOrigin(), whole_image.GetSpacing()
+    direction = [whole_image.GetDirectionMatrix().GetElement(r, c)
+                 for r in range(3) for c in range(3)]
+    check(field(whole_image, 'ReaderReadsPiecesAlone') == (1 if streams else 0),
+          "%s: GetReadsPiecesAlone() is %d" % (name, field(whole_image, 'ReaderReadsPiecesAlone')))
+    item = whole.dtype.itemsize
+    for n in (2, 3, 5):
+        covered = np.zeros(whole.shape, dtype=np.int32)
+        for r in range(n):
+            reader.UpdatePiece(r, n, 0)
+            piece = reader.GetOutput()
+            e = piece.GetExtent()
+            if e[1] < e[0] or e[3] < e[2] or e[5] < e[4]:
+                continue  # an empty piece
+            for a in range(3):
+                check(e[2 * a] >= whole_extent[2 * a] and e[2 * a + 1] <= whole_extent[2 * a + 1],
+                      "%s: piece %d/%d extent %s outside %s" % (name, r, n, e, whole_extent))
+            values = as_array(piece)
+            box = whole[e[4]:e[5] + 1, e[2]:e[3] + 1, e[0]:e[1] + 1]
+            check(values.shape == box.shape and np.array_equal(values, box),
+                  "%s: piece %d/%d holds other values than the whole read" % (name, r, n))
+            # Image pieces are split by cells: neighbours share their boundary layer of points.
+            # Each piece owns its points up to, not including, its upper layer (the last piece
+            # along an axis owns that layer too), and those owned points tile the volume once.
+            own = [e[2 * a + 1] + (1 if e[2 * a + 1] == whole_extent[2 * a + 1] else 0)
+                   for a in range(3)]
+            covered[e[4]:own[2], e[2]:own[1], e[0]:own[0]] += 1
+            check(np.allclose(piece.GetOrigin(), origin) and np.allclose(piece.GetSpacing(), spacing),
+                  "%s: piece %d/%d origin/spacing differ" % (name, r, n))
+            piece_direction = [piece.GetDirectionMatrix().GetElement(i, j)
+                               for i in range(3) for j in range(3)]
+            check(np.allclose(piece_direction, direction),
+                  "%s: piece %d/%d direction differs" % (name, r, n))
+            if streams and not dicom:
+                check(field(piece, 'ReaderVoxelBytesRead') == values.size * item,
+                      "%s: piece %d/%d read %d bytes for %d voxel bytes"
+                      % (name, r, n, field(piece, 'ReaderVoxelBytesRead'), values.size * item))
+            if dicom:
+                check(field(piece, 'ReaderFilesRead') == e[5] - e[4] + 1,
+                      "%s: piece %d/%d opened %d files for %d slices"
+                      % (name, r, n, field(piece, 'ReaderFilesRead'), e[5] - e[4] + 1))
+            if not streams:
+                check(field(piece, 'ReaderVoxelBytesRead') == whole.size * item,
+                      "%s: a compressed piece should decode the whole file" % name)
+        check(covered.min() == 1 and covered.max() == 1,
+              "%s: %d pieces do not tile the volume once (coverage %d..%d)"
+              % (name, n, covered.min(), covered.max()))
+    Delete(proxy)
+
+
+def main():
+    tmp = tempfile.mkdtemp(prefix="vtouch-pieces-")
+    try:
+        size = ["23", "17", "11"]
+        for name, streams in (("v.nrrd", True), ("v.nhdr", True), ("v.nii", True),
+                              ("v.mha", True), ("v.mhd", True), ("v.nii.gz", False)):
+            path = os.path.join(tmp, name)
+            subprocess.run([writer(), "volume", path, "oblique", "int16"] + size, check=True,
+                           stdout=subprocess.DEVNULL)
+            check_pieces(name, path, streams)
+        series = os.path.join(tmp, "dicom")
+        os.makedirs(series)
+        subprocess.run([writer(), "dicom", series, "1.2.826.0.1.3680043.2.1125.91", "oblique",
+                        "-1", "IM", "23", "17", "11"], check=True, stdout=subprocess.DEVNULL)
+        check_pieces("DICOM series", series, True, dicom=True)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    if FAILURES:
+        print("%d failure(s)" % len(FAILURES))
+        sys.exit(1)
+    print("reader pieces: all checks passed")
+
+
+main()
