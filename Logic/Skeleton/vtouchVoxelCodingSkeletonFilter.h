@@ -19,6 +19,8 @@
 #include <itkProcessObject.h>
 
 #include <limits>
+#include <memory>
+#include <utility>
 
 namespace vtouch
 {
@@ -121,6 +123,15 @@ public:
   itkSetMacro(VesselnessThreshold, double);
   itkGetConstMacro(VesselnessThreshold, double);
 
+  /// A vessel mask computed beforehand (VesselCandidateRegion: the raw-angiogram path) on the
+  /// input's grid: when set, it replaces the threshold (and vesselness) mask; the input still
+  /// gives the geometry. Null (default): the mask is thresholded from the input.
+  void SetVesselMask(std::shared_ptr<const SparseVesselMask> mask)
+  {
+    this->m_VesselMask = std::move(mask);
+    this->Modified();
+  }
+
   /// Number of vessel voxels of the last run (input resolution), and the bytes used by the masks
   /// and the codes.
   itkGetConstMacro(NumberOfVesselVoxels, unsigned long long);
@@ -167,6 +178,7 @@ private:
   unsigned int m_EffectiveDownsampleFactor{ 1 };
   unsigned long long m_CodeMemoryBytes{ 0 };
   RawSkeleton m_RawSkeleton;
+  std::shared_ptr<const SparseVesselMask> m_VesselMask;
 };
 
 } // namespace vtouch

@@ -142,6 +142,20 @@ SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
   {
     itkExceptionMacro("the whole volume must be buffered");
   }
+  if (this->m_VesselMask)
+  {
+    const auto& d = this->m_VesselMask->dims();
+    if (d[0] != static_cast<std::int64_t>(size[0]) || d[1] != static_cast<std::int64_t>(size[1]) ||
+        d[2] != static_cast<std::int64_t>(size[2]))
+    {
+      itkExceptionMacro("the vessel mask's grid differs from the input's");
+    }
+    if (this->m_VesselMask->vesselCount() == 0)
+    {
+      itkExceptionMacro("the vessel mask is empty");
+    }
+    return *this->m_VesselMask;
+  }
   // One streaming pass over the volume.
   const std::array<std::int64_t, 3> fine{ static_cast<std::int64_t>(size[0]),
     static_cast<std::int64_t>(size[1]),

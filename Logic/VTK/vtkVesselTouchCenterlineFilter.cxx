@@ -1,5 +1,6 @@
 #include "vtkVesselTouchCenterlineFilter.h"
 
+#include "vtouchCandidateRegionRunner.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include "vtkCellArray.h"
@@ -21,7 +22,9 @@
 #include <itkImportImageFilter.h>
 
 #include <algorithm>
+#include <memory>
 #include <new>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -41,6 +44,8 @@ struct Settings
   int scales;
   double vesselnessThreshold;
   int downsampleFactor;
+  /// The candidate region to code (raw-angiogram path) or null (threshold the input).
+  std::shared_ptr<const vtouch::SparseVesselMask> mask;
 };
 
 /// Wraps the VTK scalars as an ITK image (no copy) with the VTK geometry.
@@ -109,6 +114,7 @@ vtouch::QSkeleton skeletonize(vtkVesselTouchCenterlineFilter* self,
   filter->SetVesselnessNumberOfScales(static_cast<unsigned int>(std::max(0, s.scales)));
   filter->SetVesselnessThreshold(s.vesselnessThreshold);
   filter->SetDownsampleFactor(static_cast<unsigned int>(std::max(0, s.downsampleFactor)));
+  filter->SetVesselMask(s.mask);
   // Progress to VTK; VTK's abort flag to ITK.
   auto progress = itk::CStyleCommand::New();
   struct Context
@@ -232,12 +238,28 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     return 1;
   }
   output->Initialize();
+  this->ExtractionMessage.clear();
+  this->IntensityRangeUsed[0] = this->LowerThreshold;
+  this->IntensityRangeUsed[1] = this->UpperThreshold;
+  const auto fail = [this, output](const std::string& message)
+  {
+    output->Initialize();
+    this->ExtractionMessage = message;
+    vtouch::addRangeFieldData(output->GetFieldData(),
+      this->IntensityRangeUsed[0],
+      this->IntensityRangeUsed[1],
+      this->AutomaticIntensityRange,
+      message);
+  };
   int dims[3];
   input->GetDimensions(dims);
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
   {
-    vtkErrorMacro("VesselCenterline needs a 3D volume; the input is " << dims[0] << " x " << dims[1]
-                                                                      << " x " << dims[2] << ".");
+    std::ostringstream text;
+    text << "VesselCenterline needs a 3D volume; the input is " << dims[0] << " x " << dims[1]
+         << " x " << dims[2] << ".";
+    fail(text.str());
+    vtkErrorMacro(<< this->ExtractionMessage);
     return 1;
   }
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
@@ -247,13 +269,15 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   }
   if (!scalars)
   {
-    vtkErrorMacro("The input has no point scalars to threshold.");
+    fail("The input has no point scalars to threshold.");
+    vtkErrorMacro(<< this->ExtractionMessage);
     return 1;
   }
   if (scalars->GetNumberOfComponents() != 1)
   {
-    vtkErrorMacro("The input scalars have " << scalars->GetNumberOfComponents()
-                                            << " components; VesselCenterline needs one.");
+    fail("The input scalars have " + std::to_string(scalars->GetNumberOfComponents()) +
+         " components; VesselCenterline needs one.");
+    vtkErrorMacro(<< this->ExtractionMessage);
     return 1;
   }
   if (this->DownsampleFactor < 0)
@@ -262,10 +286,61 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
                   << this->DownsampleFactor << ".");
     return 1;
   }
-  const Settings s{ this->LowerThreshold,
-    this->UpperThreshold,
+  // The raw-angiogram path: the range, the seed's network, tubes only.
+  double lower = this->LowerThreshold, upper = this->UpperThreshold;
+  double seed[3] = { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] };
+  std::shared_ptr<const vtouch::SparseVesselMask> mask;
+  if (this->AutomaticIntensityRange)
+  {
+    vtouch::CandidateRegionRequest request;
+    request.automatic = true;
+    request.useSeed = this->UseSeedPoint;
+    std::copy(this->SeedPoint, this->SeedPoint + 3, request.seed_World_mm);
+    vtouch::CandidateRegionOutcome region;
+    try
+    {
+      region = vtouch::runCandidateRegion(input, scalars, request);
+    }
+    catch (const std::exception& e) // ITK exceptions are std::exceptions too
+    {
+      fail(std::string("VesselCenterline: ") + e.what());
+      vtkErrorMacro(<< this->ExtractionMessage);
+      return 1;
+    }
+    this->IntensityRangeUsed[0] = lower = region.lower;
+    this->IntensityRangeUsed[1] = upper = region.upper;
+    if (!region.ok)
+    {
+      fail(region.message);
+      vtkErrorMacro(<< region.message);
+      return 1;
+    }
+    if (!region.binary)
+    {
+      mask = region.mask;
+      if (this->UseSeedPoint)
+      {
+        // The seed voxel the region grew from (world), for the coder's root.
+        double origin[3], spacing[3];
+        input->GetOrigin(origin);
+        input->GetSpacing(spacing);
+        vtkMatrix3x3* m = input->GetDirectionMatrix();
+        for (int r = 0; r < 3; ++r)
+        {
+          seed[r] = origin[r];
+          for (int c = 0; c < 3; ++c)
+          {
+            const double d = m ? m->GetElement(r, c) : (r == c ? 1.0 : 0.0);
+            seed[r] += d * static_cast<double>(region.seedIndex[c]) * spacing[c];
+          }
+        }
+      }
+    }
+  }
+  const Settings s{ lower,
+    upper,
     this->UseSeedPoint,
-    { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] },
+    { seed[0], seed[1], seed[2] },
     this->MinimumComponentSize,
     this->MinimumBranchLength,
     this->SmoothingWindow,
@@ -274,7 +349,8 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     this->VesselnessSigmaMaximum,
     this->VesselnessNumberOfScales,
     this->VesselnessThreshold,
-    this->DownsampleFactor };
+    this->DownsampleFactor,
+    mask };
   try
   {
     vtouch::QSkeleton skeleton;
@@ -312,21 +388,23 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     used->InsertNextValue(factorUsed);
     output->GetFieldData()->AddArray(used);
     this->DownsampleFactorUsed = factorUsed;
+    vtouch::addRangeFieldData(
+      output->GetFieldData(), lower, upper, this->AutomaticIntensityRange, std::string());
   }
   catch (const itk::ProcessAborted&)
   {
-    output->Initialize();
+    fail("VesselCenterline aborted.");
     vtkWarningMacro("VesselCenterline aborted.");
   }
   catch (const itk::ExceptionObject& e)
   {
-    output->Initialize();
-    vtkErrorMacro("VesselCenterline: " << e.GetDescription());
+    fail(std::string("VesselCenterline: ") + e.GetDescription());
+    vtkErrorMacro(<< this->ExtractionMessage);
   }
   catch (const std::bad_alloc&)
   {
-    output->Initialize();
-    vtkErrorMacro("VesselCenterline: not enough memory for this volume.");
+    fail("VesselCenterline: not enough memory for this volume.");
+    vtkErrorMacro(<< this->ExtractionMessage);
   }
   return 1;
 }
@@ -334,6 +412,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
 void vtkVesselTouchCenterlineFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "AutomaticIntensityRange: " << this->AutomaticIntensityRange << "\n";
   os << indent << "LowerThreshold: " << this->LowerThreshold << "\n";
   os << indent << "UpperThreshold: " << this->UpperThreshold << "\n";
   os << indent << "UseSeedPoint: " << this->UseSeedPoint << "\n";

@@ -8,12 +8,17 @@
 //   PathHeadJunction, PathTailJunction  junction index at each end of each path, -1 when free;
 //   JunctionChildPath, JunctionChildEnd (0 head, 1 tail), JunctionParentPath, JunctionParentPoint:
 //   the end of the child path attaches to that point of the parent path (loops are junctions too).
-// Bad input: vtkErrorMacro with the reason and an empty output.
+// Field data also holds IntensityRangeUsed (lower, upper), IntensityRangeAutomatic (0/1) and
+// ExtractionMessage (empty on success, else the user-facing reason).
+// Bad input (a seed off the vessels, no vessel-like structure, ...): vtkErrorMacro with the reason,
+// the reason in ExtractionMessage and an empty output.
 #ifndef vtkVesselTouchCenterlineFilter_h
 #define vtkVesselTouchCenterlineFilter_h
 
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkVesselTouchLogicModule.h" // for export macro
+
+#include <string> // for ExtractionMessage
 
 class VTKVESSELTOUCHLOGIC_EXPORT vtkVesselTouchCenterlineFilter : public vtkPolyDataAlgorithm
 {
@@ -22,8 +27,21 @@ public:
   vtkTypeMacro(vtkVesselTouchCenterlineFilter, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// The vessel is where the scalar lies in [LowerThreshold, UpperThreshold] (defaults 0.5 and
-  /// 1e300: a binary mask works as is).
+  /// Estimate the vessel's intensity range (default on): from the seed's neighbourhood when
+  /// UseSeedPoint is on, else from the whole volume (IntensityRangeEstimator), then grow the
+  /// seed's network and cut its non-tubular parts off (VesselCandidateRegion) before coding. A
+  /// two-valued volume (a binary mask) is thresholded at its midpoint, as before. Off: the range
+  /// is [LowerThreshold, UpperThreshold] as given (the override), thresholded as before.
+  vtkSetMacro(AutomaticIntensityRange, bool);
+  vtkGetMacro(AutomaticIntensityRange, bool);
+  vtkBooleanMacro(AutomaticIntensityRange, bool);
+  /// The range the last run used (also field data "IntensityRangeUsed"), and why the last run
+  /// gave an empty output (also field data "ExtractionMessage"; empty on success).
+  vtkGetVector2Macro(IntensityRangeUsed, double);
+  const char* GetExtractionMessage() const { return this->ExtractionMessage.c_str(); }
+
+  /// With AutomaticIntensityRange off, the vessel is where the scalar lies in
+  /// [LowerThreshold, UpperThreshold] (defaults 0.5 and 1e300: a binary mask works as is).
   vtkSetMacro(LowerThreshold, double);
   vtkGetMacro(LowerThreshold, double);
   vtkSetMacro(UpperThreshold, double);
@@ -83,6 +101,9 @@ private:
   vtkVesselTouchCenterlineFilter(const vtkVesselTouchCenterlineFilter&) = delete;
   void operator=(const vtkVesselTouchCenterlineFilter&) = delete;
 
+  bool AutomaticIntensityRange = true;
+  double IntensityRangeUsed[2] = { 0.0, 0.0 };
+  std::string ExtractionMessage;
   double LowerThreshold = 0.5;
   double UpperThreshold = 1e300;
   double SeedPoint[3] = { 0.0, 0.0, 0.0 };

@@ -54,7 +54,8 @@ def run(image, magnification, reference, origin):
     source.GetClientSideObject().SetOutput(volume)
     rows = []
     for factor in (1, 0):
-        centerline = simple.VesselCenterline(Input=source, LowerThreshold=-1e30,
+        centerline = simple.VesselCenterline(Input=source, AutomaticIntensityRange=0,
+                                             LowerThreshold=-1e30,
                                              UpperThreshold=-1e-9, DownsampleFactor=factor)
         t0 = time.perf_counter()
         centerline.UpdatePipeline()

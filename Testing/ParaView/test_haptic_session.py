@@ -168,7 +168,8 @@ print("real-time: %s; %.0f Hz achieved, p99 period error %.0f us"
 # --- VesselCenterline on the phantom volume, then the same session workflow. ---
 volume = VesselPhantom(Shape="Helix", Dimensions=[64, 64, 64],  # noqa: F821
                        NoiseStandardDeviation=0.0, OutputScalarType="Float")
-extracted = VesselCenterline(Input=volume, LowerThreshold=550.0)  # noqa: F821
+extracted = VesselCenterline(Input=volume, AutomaticIntensityRange=0,  # noqa: F821
+                             LowerThreshold=550.0)
 c = vesseltouch.HapticSession(extracted)
 c.ResetCamera(direction=(0, 1, 0), view_up=(0, 0, 1))
 c.SetHandSweep(path=0, speed_mm_per_s=60.0)
@@ -200,7 +201,7 @@ def raises(fn, text, message):
 raises(lambda: vesseltouch.logic().RunOffline(0.1), "centerline",
        "no centerline: RunOffline fails")
 empty = VesselCenterline(Input=VesselPhantom(Dimensions=[32, 32, 32]),  # noqa: F821
-                         LowerThreshold=1e9)
+                         AutomaticIntensityRange=0, LowerThreshold=1e9)
 e = vesseltouch.HapticSession()
 e.SetCenterline(empty)
 raises(lambda: e.RunOffline(0.1), "empty", "empty centerline: RunOffline fails")

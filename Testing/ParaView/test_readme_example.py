@@ -71,8 +71,9 @@ check.true(seeded.UseSeedPoint == 1 and list(seeded.SeedPoint) == list(analytic.
            "the seed point is used")
 check.true(seeded.GetDataInformation().GetNumberOfPoints() > 20, "the seeded tree is extracted")
 default = vesseltouch.ExtractCenterlines(volume)
-check.true(400.0 < default.LowerThreshold < 700.0, "default threshold: mid-range (%g)"
-           % default.LowerThreshold)
+estimated = vesseltouch.centerlines.IntensityRangeUsed(default)
+check.true(default.AutomaticIntensityRange == 1 and 400.0 < estimated[0] < 700.0,
+           "default: the range is estimated (lower %g, half maximum)" % estimated[0])
 try:
     vesseltouch.ExtractCenterlines(whole)
     check.true(False, "a polydata input raises")

@@ -20,7 +20,8 @@ TOPOLOGY = ("PathHeadJunction", "PathTailJunction", "JunctionChildPath", "Juncti
 def centerline(shape, **kwargs):
     phantom = VesselPhantom(Shape=shape, Dimensions=[64, 64, 64], NoiseStandardDeviation=0.0,  # noqa: F821
                             OutputScalarType="Float")
-    filt = VesselCenterline(Input=phantom, LowerThreshold=550.0, **kwargs)  # noqa: F821
+    filt = VesselCenterline(Input=phantom, AutomaticIntensityRange=0,  # noqa: F821
+                            LowerThreshold=550.0, **kwargs)
     filt.UpdatePipeline()
     return servermanager.Fetch(filt), servermanager.Fetch(phantom, idx=1)
 
@@ -87,7 +88,7 @@ check.equal(junctions - poly.GetNumberOfLines() + 1, 1, "loop network has one lo
 
 # Bad input: thresholds that select nothing give an empty output and an error, not a crash.
 phantom = VesselPhantom(Dimensions=[32, 32, 32])  # noqa: F821
-bad = VesselCenterline(Input=phantom, LowerThreshold=1e9)  # noqa: F821
+bad = VesselCenterline(Input=phantom, AutomaticIntensityRange=0, LowerThreshold=1e9)  # noqa: F821
 bad.UpdatePipeline()
 check.equal(servermanager.Fetch(bad).GetNumberOfPoints(), 0, "empty mask gives empty output")
 

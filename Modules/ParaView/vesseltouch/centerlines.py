@@ -2,7 +2,7 @@
 
 from paraview import servermanager, simple
 
-__all__ = ["ExtractCenterlines"]
+__all__ = ["ExtractCenterlines", "IntensityRangeUsed", "ExtractionMessage"]
 
 
 def _scalar_range(port):
@@ -22,13 +22,18 @@ def ExtractCenterlines(volume=None, seed=None, lower=None, upper=None, port=0,
     """Extracts the centerlines of the vessels in ``volume`` (a source proxy, default: the
     active source; output ``port``) with a VesselCenterline filter and returns that filter.
 
-    The vessel mask is ``lower <= intensity <= upper``; ``lower`` defaults to the middle of the
-    volume's intensity range (half maximum on a dark background), ``upper`` to no limit.
-    ``seed`` (x, y, z in world mm) keeps only the vessel tree connected to that point; without
-    it every component larger than ``MinimumComponentSize`` voxels is kept. Other keyword
-    arguments set the filter's properties (MinimumBranchLength, SmoothingWindow, UseVesselness,
-    ...). The output is one polyline per path with point arrays such as ``Radius`` (mm); pass the
-    filter to ``HapticSession``/``logic().Bind()``."""
+    With neither ``lower`` nor ``upper`` the filter estimates the vessel's intensity range
+    (AutomaticIntensityRange): from the neighbourhood of ``seed`` (x, y, z in world mm, a point
+    on a vessel) for a raw bright-on-dark angiogram, or from the whole volume without a seed; it
+    keeps the seed's network and cuts its non-tubular parts off. A binary mask is thresholded at
+    its midpoint. Read the range it used with ``IntensityRangeUsed(filter)`` and why an output is
+    empty with ``ExtractionMessage(filter)``. ``lower``/``upper`` override the estimate: the
+    vessel mask is then ``lower <= intensity <= upper``, ``lower`` defaulting to the middle of the
+    volume's intensity range and ``upper`` to no limit. Without a seed every component larger
+    than ``MinimumComponentSize`` voxels is kept. Other keyword arguments set the filter's
+    properties (MinimumBranchLength, SmoothingWindow, ...). The output is one polyline per path
+    with point arrays such as ``Radius`` (mm); pass the filter to
+    ``HapticSession``/``logic().Bind()``."""
     volume = volume or simple.GetActiveSource()
     if volume is None:
         raise ValueError("ExtractCenterlines: no volume given and no active source")
@@ -36,9 +41,11 @@ def ExtractCenterlines(volume=None, seed=None, lower=None, upper=None, port=0,
     lo, hi = _scalar_range(source)
     params = dict(properties)
     params["Input"] = source
-    params["LowerThreshold"] = float(lower) if lower is not None else 0.5 * (lo + hi)
-    if upper is not None:
-        params["UpperThreshold"] = float(upper)
+    if lower is not None or upper is not None:
+        params["AutomaticIntensityRange"] = 0
+        params["LowerThreshold"] = float(lower) if lower is not None else 0.5 * (lo + hi)
+        if upper is not None:
+            params["UpperThreshold"] = float(upper)
     if seed is not None:
         seed = [float(v) for v in seed]
         if len(seed) != 3:
@@ -55,3 +62,28 @@ def ExtractCenterlines(volume=None, seed=None, lower=None, upper=None, port=0,
         simple.SetActiveSource(active)
     centerline.UpdatePipeline()
     return centerline
+
+
+def _field_data(filter_proxy):
+    return servermanager.Fetch(filter_proxy).GetFieldData()
+
+
+def IntensityRangeUsed(filter_proxy):
+    """(lower, upper): the intensity range a VesselCenterline or VesselCandidateRegion filter
+    used in its last run (estimated, or the override), or None before a run."""
+    filter_proxy.UpdatePipeline()
+    filter_proxy.UpdatePropertyInformation()
+    info = filter_proxy.GetProperty("IntensityRangeUsedInfo")
+    if info is not None and len(info) == 2:
+        return (float(info[0]), float(info[1]))
+    array = _field_data(filter_proxy).GetArray("IntensityRangeUsed")
+    return (array.GetValue(0), array.GetValue(1)) if array is not None else None
+
+
+def ExtractionMessage(filter_proxy):
+    """Why the last run of a VesselCenterline or VesselCandidateRegion filter gave an empty
+    output (for example "The seed is on background (...): pick a point on a vessel in the
+    MIP."), or "" on success."""
+    filter_proxy.UpdatePipeline()
+    array = _field_data(filter_proxy).GetAbstractArray("ExtractionMessage")
+    return array.GetValue(0) if array is not None and array.GetNumberOfValues() else ""

@@ -1,0 +1,188 @@
+// The raw-angiogram stage shared by VesselCenterline and VesselCandidateRegion (header only, not
+// a wrapped class): VTK scalars -> vtouch::VesselCandidateRegion -> the mask the voxel coder codes,
+// the range it used and the user-facing message; and the field data both filters publish.
+#pragma once
+
+#include "vtouchVesselCandidateRegion.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkMatrix3x3.h"
+#include "vtkNew.h"
+#include "vtkStringArray.h"
+#include "vtkType.h"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vtouch
+{
+
+struct CandidateRegionRequest
+{
+  bool automatic = true;
+  double lower = 0.5, upper = 1e300; ///< used when !automatic
+  bool useSeed = false;
+  double seed_World_mm[3] = { 0.0, 0.0, 0.0 };
+};
+
+struct CandidateRegionOutcome
+{
+  bool ok = false;
+  std::string message; ///< empty when ok
+  double lower = 0.0, upper = 0.0;
+  bool automatic = true;
+  bool binary = false; ///< an automatic run found a two-valued mask: threshold it as before
+  std::shared_ptr<const SparseVesselMask> mask;
+  std::array<std::int64_t, 3> seedIndex{ -1, -1, -1 }; ///< in `mask`, when seeded
+  std::vector<std::pair<std::string, double>> stageSeconds;
+};
+
+/// Voxel index (origin + direction * (index * spacing), nearest) of a world point, as ITK
+/// imports the image (extent ignored, as the voxel coder's import does).
+inline std::array<std::int64_t, 3> worldToIndex(vtkImageData* image, const double p[3])
+{
+  double origin[3], spacing[3];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  vtkNew<vtkMatrix3x3> inverse;
+  if (vtkMatrix3x3* m = image->GetDirectionMatrix())
+  {
+    inverse->DeepCopy(m);
+  }
+  inverse->Invert();
+  const double d[3] = { p[0] - origin[0], p[1] - origin[1], p[2] - origin[2] };
+  std::array<std::int64_t, 3> index{};
+  for (int r = 0; r < 3; ++r)
+  {
+    const double c = (inverse->GetElement(r, 0) * d[0] + inverse->GetElement(r, 1) * d[1] +
+                       inverse->GetElement(r, 2) * d[2]) /
+                     spacing[r];
+    index[r] = std::isfinite(c) && std::abs(c) < 1e15 ? static_cast<std::int64_t>(std::lround(c))
+                                                      : std::int64_t{ -1 };
+  }
+  return index;
+}
+
+template<typename T>
+CandidateRegionOutcome runCandidateRegion(vtkImageData* image,
+  const T* data,
+  const CandidateRegionRequest& request)
+{
+  VolumeView<T> view;
+  view.voxels = data;
+  int dims[3];
+  image->GetDimensions(dims);
+  view.dims = { dims[0], dims[1], dims[2] };
+  image->GetSpacing(view.spacing_mm.data());
+  VesselCandidateRegion::Settings s;
+  s.automatic = request.automatic;
+  s.lower = request.lower;
+  s.upper = request.upper;
+  // The override is the threshold as given: no tube cut (the filters' path before the raw path).
+  s.cutNonTubular = request.automatic;
+  s.useSeed = request.useSeed;
+  if (request.useSeed)
+  {
+    s.seed = worldToIndex(image, request.seed_World_mm);
+  }
+  VesselCandidateRegion::Result r = VesselCandidateRegion::extract(view, s);
+  if (request.useSeed && !view.inside(s.seed[0], s.seed[1], s.seed[2]))
+  {
+    // Say where the seed and the volume are: the click or the Python seed missed the volume.
+    double bounds[6];
+    image->GetBounds(bounds);
+    char text[400];
+    std::snprintf(text,
+      sizeof(text),
+      "The seed (%g, %g, %g mm; voxel %lld, %lld, %lld) is outside the volume (%g..%g, %g..%g, "
+      "%g..%g mm): pick a point on a vessel in the MIP.",
+      request.seed_World_mm[0],
+      request.seed_World_mm[1],
+      request.seed_World_mm[2],
+      static_cast<long long>(s.seed[0]),
+      static_cast<long long>(s.seed[1]),
+      static_cast<long long>(s.seed[2]),
+      bounds[0],
+      bounds[1],
+      bounds[2],
+      bounds[3],
+      bounds[4],
+      bounds[5]);
+    r.message = text;
+  }
+  CandidateRegionOutcome out;
+  out.ok = r.ok;
+  out.message = r.message;
+  out.automatic = request.automatic;
+  out.lower = request.automatic ? r.range.lower : request.lower;
+  out.upper = request.automatic ? r.range.upper : request.upper;
+  out.binary = request.automatic && r.range.binary;
+  out.seedIndex = r.seed;
+  out.stageSeconds = r.stageSeconds;
+  if (r.ok)
+  {
+    out.mask = std::make_shared<const SparseVesselMask>(std::move(r.mask));
+  }
+  return out;
+}
+
+/// Dispatches on the scalar type (other types: one float copy of the volume).
+inline CandidateRegionOutcome runCandidateRegion(vtkImageData* image,
+  vtkDataArray* scalars,
+  const CandidateRegionRequest& request)
+{
+  void* data = scalars->GetVoidPointer(0);
+  switch (scalars->GetDataType())
+  {
+    case VTK_FLOAT:
+      return runCandidateRegion(image, static_cast<const float*>(data), request);
+    case VTK_DOUBLE:
+      return runCandidateRegion(image, static_cast<const double*>(data), request);
+    case VTK_UNSIGNED_CHAR:
+      return runCandidateRegion(image, static_cast<const unsigned char*>(data), request);
+    case VTK_SHORT:
+      return runCandidateRegion(image, static_cast<const short*>(data), request);
+    case VTK_UNSIGNED_SHORT:
+      return runCandidateRegion(image, static_cast<const unsigned short*>(data), request);
+    default:
+    {
+      std::vector<float> copy(static_cast<std::size_t>(scalars->GetNumberOfTuples()));
+      for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+      {
+        copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
+      }
+      return runCandidateRegion(image, copy.data(), request);
+    }
+  }
+}
+
+/// IntensityRangeUsed (lower, upper), IntensityRangeAutomatic (0/1), ExtractionMessage.
+inline void addRangeFieldData(vtkFieldData* fd,
+  double lower,
+  double upper,
+  bool automatic,
+  const std::string& message)
+{
+  vtkNew<vtkDoubleArray> range;
+  range->SetName("IntensityRangeUsed");
+  range->InsertNextValue(lower);
+  range->InsertNextValue(upper);
+  fd->AddArray(range);
+  vtkNew<vtkIntArray> isAutomatic;
+  isAutomatic->SetName("IntensityRangeAutomatic");
+  isAutomatic->InsertNextValue(automatic ? 1 : 0);
+  fd->AddArray(isAutomatic);
+  vtkNew<vtkStringArray> text;
+  text->SetName("ExtractionMessage");
+  text->InsertNextValue(message);
+  fd->AddArray(text);
+}
+
+} // namespace vtouch
