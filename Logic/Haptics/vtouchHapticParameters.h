@@ -82,6 +82,12 @@ struct HapticParameters
   double tracerDirectionHysteresis = 0.1;
   /// Screen arc searched ahead for a fold before reversing, px (Tracer). Default 3 px
   double tracerFoldLookAhead_px = 3.0;
+  /// The tracing rule: 0 = offset (default: the cursor-to-agent offset is projected, with dead
+  /// band, cusp hysteresis and fold look-ahead; Tracer::follow), 1 = movement (Yi & Hayward
+  /// §3.2.1 as written: each tick's cursor movement is projected; Tracer::followMovement).
+  int tracerRule = 0;
+  /// Movement rule: per-tick projections below this leave the agent still, px. Default 0.01 px
+  double tracerMovementThreshold_px = 0.01;
 
   static constexpr double kMinZoom = 0.1;
   static constexpr double kMaxZoom = 10.0;

@@ -79,6 +79,9 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Trace.directionHysteresis = std::isfinite(p.tracerDirectionHysteresis)
                                       ? std::clamp(p.tracerDirectionHysteresis, 0.0, 1.0)
                                       : 0.1;
+  this->Trace.movementThreshold_px = std::isfinite(p.tracerMovementThreshold_px)
+                                       ? std::max(0.0, p.tracerMovementThreshold_px)
+                                       : 0.01;
   this->Trace.foldLookAhead_px =
     std::isfinite(p.tracerFoldLookAhead_px) ? std::max(0.0, p.tracerFoldLookAhead_px) : 3.0;
 }
@@ -155,6 +158,7 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
     this->Cursor = { 0.5 * vm->mapWidth(), 0.5 * vm->mapHeight() };
     this->HasCursor = true;
   }
+  const Vec2 cursorBefore = this->Cursor; // the movement rule projects this tick's motion
   if (!reindex)
   {
     this->Cursor = this->Cursor + handDelta * pxPerMm;
@@ -195,7 +199,14 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
       this->Trace.trail_px = this->Active == ForceLawId::ConstraintProxy
                                ? this->Proxy.tangentTrail_px(in.capabilities, pxPerMm, in.dt_s)
                                : 0.0;
-      this->Trace.follow(*vm, this->Cursor);
+      if (p.tracerRule == 1)
+      {
+        this->Trace.followMovement(*vm, this->Cursor - cursorBefore);
+      }
+      else
+      {
+        this->Trace.follow(*vm, this->Cursor);
+      }
     }
   }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace vtouch
 {
@@ -288,6 +289,20 @@ double Tracer::follow(const ViewModel& vm, const Vec2& cursor_px)
       const double want = std::fabs(proj) - keep;
       if (std::fabs(proj) <= this->deadBand_px || want <= 0.0 || len <= kZeroLength_px)
       {
+        // The agent trails the cursor by the dead band: when that leaves it just short of a
+        // junction the hand is turning at (the cursor is off the edge, beyond the junction's
+        // end of it), finish the edge so the branches become candidates at the next step.
+        const int end = proj > 0.0 ? loc.to : loc.from;
+        const double left = (proj > 0.0 ? 1.0 - loc.t : loc.t) * len;
+        if (len > kZeroLength_px && proj != 0.0 && left <= keep + kZeroLength_px &&
+            topo.neighbours(end, nb, kMaxNeighbours) > 2 && (r - u * proj).norm() > keep)
+        {
+          const double tEnd = proj > 0.0 ? 1.0 : 0.0;
+          travelled += this->advance(vm, loc.from, loc.to, loc.t, tEnd);
+          loc = proj > 0.0 ? AgentLocation{ loc.to, loc.from, 0.0 }
+                           : AgentLocation{ loc.from, loc.to, 0.0 };
+          continue;
+        }
         break;
       }
       const double t0 = loc.t;
@@ -387,6 +402,104 @@ double Tracer::follow(const ViewModel& vm, const Vec2& cursor_px)
     travelled += this->advance(vm, loc.from, best, 0.0, want / len);
     loc = { loc.from, best, want / len };
     break;
+  }
+  return travelled;
+}
+
+double Tracer::followMovement(const ViewModel& vm, const Vec2& movement_px)
+{
+  if (this->State != InteractionState::Tracing || !this->Location.valid() ||
+      !movement_px.isFinite())
+  {
+    return 0.0;
+  }
+  const SceneTopology& topo = vm.topology();
+  AgentLocation& loc = this->Location;
+  int nb[kMaxNeighbours];
+  // Candidate directions at the agent: inside an edge its two ends, at a point every neighbour.
+  int best = -1;
+  double bestProj = -1.0;
+  if (loc.t > 0.0 && loc.to >= 0)
+  {
+    const Vec2 u = unit(vm.screen_px(loc.to) - vm.screen_px(loc.from));
+    const double proj = movement_px.dot(u);
+    best = proj >= 0.0 ? loc.to : loc.from;
+    bestProj = std::fabs(proj);
+  }
+  else
+  {
+    const int count = topo.neighbours(loc.from, nb, kMaxNeighbours);
+    for (int i = 0; i < count; ++i)
+    {
+      const double proj = movement_px.dot(this->directionTo(vm, loc.from, nb[i]));
+      if (proj > bestProj)
+      {
+        bestProj = proj;
+        best = nb[i];
+      }
+    }
+  }
+  if (best < 0 || !(bestProj >= this->movementThreshold_px) || bestProj <= 0.0)
+  {
+    return 0.0; // §3.2.1: "below a threshold, the agent remains stationary"
+  }
+  // Travel the subtended screen arc length, iterating over points.
+  double remaining = bestProj;
+  double travelled = 0.0;
+  const Vec2 heading = unit(movement_px);
+  for (int step = 0; step < this->maxStepsPerTick && remaining > 0.0; ++step)
+  {
+    int a = loc.from;
+    double t0 = 0.0;
+    int b = best;
+    if (loc.t > 0.0 && loc.to >= 0)
+    {
+      // Inside an edge: toward `best` (one of its ends).
+      a = loc.from;
+      b = loc.to;
+      t0 = loc.t;
+      if (best == loc.from)
+      {
+        std::swap(a, b);
+        t0 = 1.0 - loc.t;
+      }
+    }
+    const double len = (vm.screen_px(b) - vm.screen_px(a)).norm();
+    const double left = (1.0 - t0) * len;
+    if (len <= kZeroLength_px || remaining >= left)
+    {
+      travelled += this->advance(vm, a, b, t0, 1.0);
+      remaining -= std::max(0.0, left);
+      const int came = a;
+      loc = { b, a, 0.0 };
+      // Go on along the neighbour best aligned with the movement, never straight back.
+      const int count = topo.neighbours(b, nb, kMaxNeighbours);
+      best = -1;
+      double bestDot = -2.0;
+      for (int i = 0; i < count; ++i)
+      {
+        if (nb[i] == came)
+        {
+          continue;
+        }
+        const double d = heading.dot(this->directionTo(vm, b, nb[i]));
+        if (d > bestDot)
+        {
+          bestDot = d;
+          best = nb[i];
+        }
+      }
+      if (best < 0)
+      {
+        break; // a path end
+      }
+      continue;
+    }
+    const double t1 = t0 + remaining / len;
+    travelled += this->advance(vm, a, b, t0, t1);
+    loc =
+      (a == loc.from || loc.t == 0.0) ? AgentLocation{ a, b, t1 } : AgentLocation{ b, a, 1.0 - t1 };
+    remaining = 0.0;
   }
   return travelled;
 }

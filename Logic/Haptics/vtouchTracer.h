@@ -87,6 +87,15 @@ public:
   /// Tracing: moves the agent along the centerline toward the cursor (see the .cxx for the rule).
   /// Returns the 2D screen arc length travelled this tick (pixels).
   double follow(const ViewModel& vm, const Vec2& cursor_px);
+  /// Tracing, Yi & Hayward §3.2.1 as written: this tick's cursor-movement vector (previous to
+  /// updated cursor, pixels) is projected on the candidate directions at the agent (lower and
+  /// higher index, and every branch joining there); the agent takes the largest projection, stays
+  /// put when it is below `movementThreshold_px`, and travels the screen arc length the projection
+  /// subtends, point by point (at each point it goes on along the candidate best aligned with the
+  /// movement, never straight back). Returns the screen arc length travelled (pixels).
+  double followMovement(const ViewModel& vm, const Vec2& movement_px);
+  /// Threshold of followMovement(): smaller per-tick projections leave the agent still, px.
+  double movementThreshold_px = 0.01;
 
   /// Interpolated quantities at the agent. Requires a valid location.
   AgentSample sample(const ViewModel& vm) const;

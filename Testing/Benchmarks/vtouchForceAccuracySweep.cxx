@@ -15,6 +15,18 @@
 //       on every point whose projected tangent keeps half its length (as the phantom test).
 // A scripted hand (position drive, 1000 N/m grip) approaches the path in 0.3 s, then follows the
 // projected centerline at the given speed; the first 0.5 s are not measured.
+//
+// The two tracing rules (HapticParameters::tracerRule; Yi & Hayward §3.2.1), on the pipeline with
+// the cursor driven point by point along the projected path plus a seeded dither:
+//   tracer.<rule>.<scene>.mean_error_px / max_error_px   agent to the cursor's intended point on
+//       the path, on screen (tracking error; the movement rule's drift accumulates here)
+//   tracer.<rule>.<scene>.max_force_step_n   largest per-tick change of the LDGF target force
+//       (the force steps at the spiral's projection cusps)
+//   tracer.<rule>.<scene>.reached_fraction   last point reached / path length
+//   tracer.<rule>.branch.correct_fraction    a hand turning into a branch (10-90 degrees off the
+//       parent, three dither seeds): fraction of runs that end on the branch
+// with <rule> offset (default) or movement (the paper's rule).
+#include "vtouchHapticPipeline.h"
 #include "vtouchHapticSession.h"
 #include "vtouchHapticsTestUtilities.h"
 #include "vtouchLdgfForceLaw.h"
@@ -279,6 +291,162 @@ double ldgfMaxRelativeError(const Scene& scene)
   return worst;
 }
 
+struct TracerMeasure
+{
+  double meanError_px = 0.0;
+  double maxError_px = 0.0;
+  double maxForceStep_N = 0.0;
+  double reached = 0.0;
+  int lastPath = -1;
+};
+
+/// The cursor visits the screen position of every point of `route` (global indices), one per
+/// tick, plus a seeded dither of `dither_px` (uniform, per axis, not accumulated).
+TracerMeasure traceRoute(const ViewModel& vm,
+  const std::vector<int>& route,
+  int rule,
+  double dither_px,
+  unsigned seed)
+{
+  HapticPipeline pipeline;
+  HapticParameters p = immediateContact();
+  p.tracerRule = rule;
+  DeviceCapabilities caps;
+  caps.maxContinuousForce_N = 3.0; // the simulated stylus's range (lambda is sized from it)
+  TickInput in;
+  in.capabilities = &caps;
+  in.view = &vm;
+  in.device.pressure = 1.0;
+  std::uint64_t state = seed * 2654435761ull + 1;
+  auto uniform = [&state]()
+  {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0 * 2.0 - 1.0;
+  };
+  const Vec2 start = vm.screen_px(route.front());
+  pipeline.setCursor_px(start);
+  Vec2 previousTarget = start;
+  TracerMeasure m;
+  Vec2 previousForce;
+  int n = 0;
+  int furthest = 0;
+  for (std::size_t k = 0; k < route.size(); ++k)
+  {
+    const Vec2 target = vm.screen_px(route[k]) + Vec2{ uniform(), uniform() } * dither_px;
+    const Vec2 d = target - previousTarget;
+    previousTarget = target;
+    in.device.position_Device_mm.x += d.x / 4.0; // 4 px per hand mm at zoom 1
+    in.device.position_Device_mm.y += d.y / 4.0;
+    const AgentState st = pipeline.step(in, p);
+    if (st.state != InteractionState::Tracing)
+    {
+      continue;
+    }
+    const double error = (st.agentScreen_px - vm.screen_px(route[k])).norm();
+    m.meanError_px += error;
+    m.maxError_px = std::max(m.maxError_px, error);
+    if (n > 0)
+    {
+      m.maxForceStep_N = std::max(m.maxForceStep_N, (st.targetForce_N - previousForce).norm());
+    }
+    previousForce = st.targetForce_N;
+    ++n;
+    const int g = vm.topology().pathBegin(st.path) + st.point;
+    const auto it = std::find(route.begin(), route.end(), g);
+    if (it != route.end())
+    {
+      furthest = std::max(furthest, static_cast<int>(it - route.begin()));
+    }
+    m.lastPath = st.path;
+  }
+  m.meanError_px = n ? m.meanError_px / n : std::nan("");
+  m.reached = static_cast<double>(furthest) / static_cast<double>(route.size() - 1);
+  return m;
+}
+
+/// A parent vessel along +x and a branch leaving its middle at `angle_deg` in the screen plane.
+QSkeleton branchScene(double angle_deg)
+{
+  QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  const double a = angle_deg * kPi / 180.0;
+  QSkeleton branch = straightLine({ 0, 0, 0 }, { 20 * std::cos(a), 20 * std::sin(a), 0 }, 0.25);
+  branch.paths[0].id = 1;
+  s.paths.push_back(branch.paths[0]);
+  join(s, 1, Junction::End::Head, 0, 80);
+  return s;
+}
+
+void printTracerComparison()
+{
+  for (int rule : { 0, 1 })
+  {
+    const char* key = rule == 0 ? "offset" : "movement";
+    // The spiral of the force sweep seen 3 degrees off edge-on: projection cusps, and the
+    // helix seen from the side.
+    const double tilt = 3.0 * kPi / 180.0;
+    const QSkeleton spiral = singlePath(
+      [tilt](double u)
+      {
+        const double t = 4 * kPi * u;
+        const double r = 8 + 3 * t;
+        return Vec3{
+          r * std::cos(t), r * std::sin(t) * std::sin(tilt), r * std::sin(t) * std::cos(tilt)
+        };
+      },
+      2400);
+    const QSkeleton helix = singlePath(
+      [](double u)
+      {
+        const double t = 6 * kPi * u;
+        return Vec3{ 10 * std::cos(t), 10 * std::sin(t), 3 * t };
+      },
+      2400);
+    const auto spiralView = buildView(spiral, topCamera({ 0, 0, 0 }, 0.1), 12.0);
+    const auto helixView = buildView(
+      helix, makeOrthographicCamera({ 0, 0, 9 * kPi }, { 0, 1, 0 }, { 0, 0, 1 }, 75.0, 800, 600));
+    std::vector<int> all(2400);
+    for (int g = 0; g < 2400; ++g)
+    {
+      all[g] = g;
+    }
+    const std::pair<const char*, const ViewModel*> scenes[] = { { "spiral", spiralView.get() },
+      { "helix", helixView.get() } };
+    for (const auto& [name, view] : scenes)
+    {
+      const TracerMeasure m = traceRoute(*view, all, rule, 0.3, 1);
+      std::printf(",\n  \"tracer.%s.%s.mean_error_px\": %.6g", key, name, m.meanError_px);
+      std::printf(",\n  \"tracer.%s.%s.max_error_px\": %.6g", key, name, m.maxError_px);
+      std::printf(",\n  \"tracer.%s.%s.max_force_step_n\": %.6g", key, name, m.maxForceStep_N);
+      std::printf(",\n  \"tracer.%s.%s.reached_fraction\": %.6g", key, name, m.reached);
+    }
+    int correct = 0;
+    int runs = 0;
+    for (double angle : { 10.0, 20.0, 45.0, 90.0 })
+    {
+      const auto view = buildView(branchScene(angle), topCamera({ 0, 0, 0 }, 0.25));
+      std::vector<int> route;
+      for (int g = 20; g <= 80; ++g) // along the parent to the junction
+      {
+        route.push_back(g);
+      }
+      const int branchBegin = view->topology().pathBegin(1);
+      const int branchEnd = view->topology().pathEnd(1);
+      for (int g = branchBegin + 1; g < branchEnd; ++g) // then along the branch
+      {
+        route.push_back(g);
+      }
+      for (unsigned seed : { 1u, 2u, 3u })
+      {
+        const TracerMeasure m = traceRoute(*view, route, rule, 0.3, seed);
+        correct += m.lastPath == 1 ? 1 : 0;
+        ++runs;
+      }
+    }
+    std::printf(
+      ",\n  \"tracer.%s.branch.correct_fraction\": %.6g", key, static_cast<double>(correct) / runs);
+  }
+}
+
 const char* lawKey(ForceLawId law)
 {
   switch (law)
@@ -377,6 +545,7 @@ int main(int argc, char** argv)
       std::fflush(stdout);
     }
   }
+  printTracerComparison();
   std::printf("\n}\n");
   return 0;
 }

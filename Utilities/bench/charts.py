@@ -9,6 +9,8 @@ Charts (each captioned with the machine, the commit and quick/full mode):
   centerline_scaling.png           time and peak memory against volume size, log-log, fitted slopes
   force_error_vs_rate.png          force error against loop rate per force law, helix and spiral
   force_error_vs_tick_cost.png     force error at 1 kHz against the tick's median cost
+  tracer_rules.png                 the two tracing rules: tracking error, force steps at the
+                                   spiral's cusps, branch choices
   loop_period_error.png            period-error histograms at 1, 2, 5, 10 kHz, with and without
                                    a render load
   stability_maps.png               stable/unstable over coupler k_c, LDGF lambda, force
@@ -184,6 +186,41 @@ def chart_force(out, results):
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, ncol=2)
     save(fig, out, "force_error_vs_tick_cost.png", results)
+
+
+def chart_tracer(out, results):
+    """The two tracing rules (Yi & Hayward 3.2.1): tracking error, force steps, branch choices."""
+    raw = load(out, "force")
+    if not raw or "tracer.offset.helix.mean_error_px" not in raw:
+        return
+    rules = (("offset", "offset (default)"), ("movement", "movement (paper)"))
+    scenes = ("helix", "spiral")
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.5))
+    width = 0.38
+    x = np.arange(len(scenes))
+    for i, (rule, label) in enumerate(rules):
+        mean = [raw.get("tracer.%s.%s.mean_error_px" % (rule, s), np.nan) for s in scenes]
+        peak = [raw.get("tracer.%s.%s.max_error_px" % (rule, s), np.nan) for s in scenes]
+        step = [raw.get("tracer.%s.%s.max_force_step_n" % (rule, s), np.nan) for s in scenes]
+        axes[0].bar(x + (i - 0.5) * width, mean, width, label=label + " mean")
+        axes[0].plot(x + (i - 0.5) * width, peak, "k^", ms=7)
+        axes[1].bar(x + (i - 0.5) * width, step, width, label=label)
+        axes[2].bar(i, raw.get("tracer.%s.branch.correct_fraction" % rule, np.nan), 0.6,
+                    label=label)
+    axes[0].set_yscale("log")
+    axes[0].set_title("tracking error (bars mean, triangles max), px", fontsize=10)
+    axes[1].set_title("largest per-tick LDGF target step, N", fontsize=10)
+    axes[2].set_title("branch taken (10-90 deg, 3 seeds), fraction", fontsize=10)
+    for ax in axes[:2]:
+        ax.set_xticks(x)
+        ax.set_xticklabels(["helix (side)", "spiral 3 deg off edge-on"])
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3, axis="y")
+    axes[2].set_xticks([0, 1])
+    axes[2].set_xticklabels([r[1] for r in rules])
+    axes[2].set_ylim(0, 1.05)
+    axes[2].grid(alpha=0.3, axis="y")
+    save(fig, out, "tracer_rules.png", results)
 
 
 def chart_loop(out, results):
@@ -394,8 +431,8 @@ def main():
     except (OSError, ValueError) as e:
         print("charts: no results: %s" % e, file=sys.stderr)
         return 1
-    for chart in (chart_centerline_accuracy, chart_centerline_scaling, chart_force, chart_loop,
-                  chart_stability, chart_render, chart_raw_centerline, summary):
+    for chart in (chart_centerline_accuracy, chart_centerline_scaling, chart_force, chart_tracer,
+                  chart_loop, chart_stability, chart_render, chart_raw_centerline, summary):
         try:
             chart(out, results)
         except Exception as e:  # noqa: BLE001  (one broken chart must not hide the others)

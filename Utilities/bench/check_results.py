@@ -25,6 +25,10 @@ REQUIRED = (
        for law in ("ldgf", "change_of_height", "lateral_gradient", "constraint_proxy")
        for scene in ("helix", "spiral")
        for what in ("1000hz.rel_rms_error", "tick_median_ns")]
+    + ["tracer.%s.%s.%s" % (rule, scene, what) for rule in ("offset", "movement")
+       for scene in ("helix", "spiral")
+       for what in ("mean_error_px", "max_error_px", "max_force_step_n", "reached_fraction")]
+    + ["tracer.%s.branch.correct_fraction" % rule for rule in ("offset", "movement")]
     + ["stability.%s.1000hz.max_stable" % m
        for m in ("coupler_kc_n_per_m", "ldgf_lambda_mm", "interpolation_n_per_s")]
     + ["render.agent_fps_cached", "render.agent_fps_full", "meta.quick"]

@@ -276,3 +276,72 @@ TEST(Tracer, ReversesWhenTheHandClearlyGoesBack)
 
 } // namespace
 } // namespace vtouch
+
+namespace vtouch
+{
+namespace
+{
+using namespace vtouch::testing;
+
+TEST(Tracer, MovementRuleTravelsTheProjectedArcOfEachTicksMovement)
+{
+  // Yi & Hayward §3.2.1: the cursor-movement vector of one tick, projected on the candidate
+  // directions; below the threshold the agent stays; otherwise it travels the subtended arc.
+  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  tracer.movementThreshold_px = 0.05;
+  tracer.placeAt(*vm, 80);                                          // x = 0
+  EXPECT_EQ(tracer.followMovement(*vm, { 0.04, 0.0 }), 0.0);        // below the threshold
+  EXPECT_NEAR(tracer.followMovement(*vm, { 3.0, 4.0 }), 3.0, 1e-9); // only the projection counts
+  EXPECT_NEAR(tracer.sample(*vm).screen_px.x, 403.0, 1e-9);
+  EXPECT_NEAR(tracer.followMovement(*vm, { -10.0, 0.0 }), 10.0, 1e-9); // back, across points
+  EXPECT_NEAR(tracer.sample(*vm).screen_px.x, 393.0, 1e-9);
+  EXPECT_EQ(tracer.directionOfTravel(), -1);
+  // The agent does not chase the cursor: movement across the vessel leaves it where it is.
+  EXPECT_EQ(tracer.followMovement(*vm, { 0.0, 20.0 }), 0.0);
+}
+
+TEST(Tracer, TakesAPerpendicularBranchWhenTheHandTurnsExactlyAtTheJunction)
+{
+  // The offset rule trails the cursor by the dead band: it used to stop 0.25 px short of the
+  // junction and never see the branch when the hand turned there (the tracer chart's branch runs).
+  QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  QSkeleton branch = straightLine({ 0, 0, 0 }, { 0, 20, 0 }, 0.25);
+  branch.paths[0].id = 1;
+  s.paths.push_back(branch.paths[0]);
+  join(s, 1, Junction::End::Head, 0, 80);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  tracer.placeAt(*vm, 40);      // x = -10 mm
+  for (int k = 1; k <= 40; ++k) // along the parent to the junction, 1 px per tick
+  {
+    tracer.follow(*vm, { 360.0 + k, 300.0 });
+  }
+  for (int k = 1; k <= 40; ++k) // then straight up
+  {
+    tracer.follow(*vm, { 400.0, 300.0 + k });
+  }
+  const AgentSample a = tracer.sample(*vm);
+  EXPECT_EQ(vm->topology().pathOf(a.point), 1);
+  EXPECT_NEAR(a.screen_px.y, 340.0 - tracer.deadBand_px, 0.26);
+}
+
+TEST(Tracer, MovementRuleTakesTheBranchOfLargestProjection)
+{
+  QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  QSkeleton branch = straightLine({ 0, 0, 0 }, { 0, 20, 0 }, 0.25);
+  branch.paths[0].id = 1;
+  s.paths.push_back(branch.paths[0]);
+  join(s, 1, Junction::End::Head, 0, 80);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  tracer.placeAt(*vm, 80); // the junction
+  tracer.followMovement(*vm, { 0.5, 6.0 });
+  const AgentSample a = tracer.sample(*vm);
+  EXPECT_EQ(vm->topology().pathOf(a.point), 1);
+  EXPECT_NEAR(a.screen_px.y, 306.0, 0.26); // ~6 px up the branch (the projection on it)
+}
+
+} // namespace
+} // namespace vtouch
