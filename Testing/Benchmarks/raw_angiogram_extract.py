@@ -16,10 +16,11 @@ is the first point of the true tree (port 1), on the root. For each case DIR/<ta
 extraction (points, line offsets), the truth (phantom: points, radius, line offsets), spacing,
 origin, the MIP along z, and the volume when --keep-volume (for scikit-image); DIR/<tag>.json the
 times: phantom_s (generation), time_s (VesselCenterline's UpdatePipeline, the input already
-updated: what the user waits for) and every field-data array of the output whose name ends in
-"Seconds" (the filter's stage times), and how the intensity range was chosen: "automatic" (the
-filter's AutomaticIntensityRange) or, while the filter has no such property, "otsu" (Otsu's
-threshold on the whole volume up to its maximum, typed for the user).
+updated: what the user waits for), every field-data array of the output whose name ends in
+"Seconds" (the filter's stage times) or holds "Range", and how the intensity range was chosen:
+"automatic" (the filter's AutomaticIntensityRange) or, while the filter has no such property,
+"otsu" / "otsu_upper" (centerline_metrics.vessel_threshold on the whole volume, up to its
+maximum, typed for the user).
 """
 
 import argparse
@@ -80,10 +81,10 @@ def run_case(case, out_dir, keep_volume):
         filt.AutomaticIntensityRange = 1
         record["range_mode"] = "automatic"
     else:
-        lower = cm.otsu_threshold(volume)
+        lower, method = cm.vessel_threshold(volume)
         filt.LowerThreshold = lower
         filt.UpperThreshold = float(volume.max())
-        record["range_mode"] = "otsu"
+        record["range_mode"] = method
         record["otsu_lower"] = lower
     t0 = time.perf_counter()
     filt.UpdatePipeline()

@@ -156,6 +156,29 @@ def otsu_threshold(values, bins=256):
     return float(centres[:-1][np.argmax(variance)])
 
 
+# Vessels fill a few per cent of an angiogram at most: a mask above this fraction means Otsu's
+# threshold split the background tissue (its two classes are dark and bright tissue, not tissue
+# and vessels; this happens when the vessels are too few to weigh in the histogram).
+MAXIMUM_VESSEL_FRACTION = 0.05
+
+
+def vessel_threshold(volume):
+    """(threshold, method): Otsu's threshold when it keeps at most MAXIMUM_VESSEL_FRACTION of the
+    volume ("otsu"); else Otsu again on the voxels above it, until the mask is that small
+    ("otsu_upper", at most four times: Otsu restricted to the upper class, the idea of H. Cai et
+    al.'s iterative triclass thresholding, IEEE Trans. Image Process. 23:1038, 2014)."""
+    values = np.asarray(volume).ravel()
+    t = otsu_threshold(values)
+    method = "otsu"
+    for _ in range(4):
+        upper = values[values > t]
+        if len(upper) <= MAXIMUM_VESSEL_FRACTION * len(values) or len(upper) < 2:
+            break
+        t = otsu_threshold(upper)
+        method = "otsu_upper"
+    return t, method
+
+
 def vtk_lines(poly):
     """(points (N, 3), list of index arrays) of a vtkPolyData's polylines (VTK 9)."""
     from vtkmodules.util.numpy_support import vtk_to_numpy

@@ -19,7 +19,9 @@ Measures: Utilities/bench/centerline_metrics.py. Keys (flat, units in the names)
                                       recall_r0.6_0.75, recall_r0.75_1, recall_r1_2, recall_r2_up,
                                       recall_r0.5_up, recall_r1_up, mean_dist_vox, p95_dist_vox,
                                       false_vessel_points
-  centerline.raw.skimage.<measure>    the same for scikit-image
+  centerline.raw.skimage.<measure>    the same for scikit-image (its mask: Otsu's threshold, or
+                                      where that keeps more than 5 % of the volume, i.e. split
+                                      the tissue, Otsu again above it: otsu_upper_cases counts them)
   centerline.raw.case.<tag>.<m>, centerline.raw.skimage.case.<tag>.<m>   every case
   centerline.raw.time_s               VesselCenterline's UpdatePipeline on the CTA-sized volume
   centerline.raw.skimage.time_s       Otsu + skeletonize_3d on it
@@ -86,9 +88,11 @@ def lines_of(conn, offsets):
 
 
 def skimage_run(volume, workdir):
-    """Otsu mask of the whole volume, skeletonize_3d in a child process: (ijk points, seconds)."""
+    """Otsu mask of the whole volume (centerline_metrics.vessel_threshold: Otsu again above it
+    where Otsu split the tissue), skeletonize_3d in a child process:
+    (ijk points, skeletonize seconds, child seconds, threshold, threshold method)."""
     nz, ny, nx = volume.shape
-    threshold = cm.otsu_threshold(volume)
+    threshold, method = cm.vessel_threshold(volume)
     mask_path = os.path.join(workdir, "mask.raw")
     (volume > threshold).astype(np.uint8).tofile(mask_path)
     out = os.path.join(workdir, "skimage.npy")
@@ -100,7 +104,7 @@ def skimage_run(volume, workdir):
     ijk = np.load(out).astype(float)
     os.remove(mask_path)
     os.remove(out)
-    return ijk, info["seconds"], total, threshold
+    return ijk, info["seconds"], total, threshold, method
 
 
 def run(build, quick, tmp, log):
@@ -131,10 +135,11 @@ def run(build, quick, tmp, log):
         voxel = float(spacing.min())
         points = data["points"]
         lines = lines_of(data["conn"], data["offsets"])
-        ijk, sk_seconds, sk_total, otsu = skimage_run(volume, workdir)
+        ijk, sk_seconds, sk_total, otsu, otsu_method = skimage_run(volume, workdir)
         row = {"time_s": record["time_s"], "input_s": record["phantom_s"],
                "paths": record["paths"], "range_mode": record["range_mode"],
                "skimage_time_s": sk_seconds, "otsu_threshold": otsu,
+               "otsu_method": otsu_method,
                "dimensions": record["dimensions"]}
         row.update({k: v for k, v in record.items() if k.startswith("field.")})
         if tag == "cta_aorta":
@@ -184,6 +189,8 @@ def run(build, quick, tmp, log):
             values = [c[k] for c in per_case[who] if not math.isnan(c[k])]
             results[prefix + k] = float(fold(values)) if values else math.nan
     results["centerline.raw.phantom_cases"] = len(per_case["vc"])
+    results["centerline.raw.skimage.otsu_upper_cases"] = sum(
+        1 for c in raw["cases"].values() if c["otsu_method"] == "otsu_upper")
     results["centerline.raw.automatic_range"] = int(
         all(raw["cases"][c["tag"]]["range_mode"] == "automatic" for c in cases))
     # Whole-volume vesselness on the CTA-sized phantom (the same spec as the timing case).

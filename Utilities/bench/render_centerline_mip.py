@@ -89,7 +89,7 @@ def render(build, which, out_dir, tmp):
     points = data["points"]
     lines = rb.lines_of(data["conn"], data["offsets"])
     dense, _ = cm.resample(points, lines, 0.25 * spacing.min())
-    ijk, sk_seconds, _, otsu = rb.skimage_run(data["volume"], tmp)
+    ijk, sk_seconds, _, otsu, _ = rb.skimage_run(data["volume"], tmp)
     sk_world = origin + ijk * spacing * direction
     voxel = float(spacing.min())
     panels = []

@@ -98,6 +98,18 @@ class CenterlineMetrics(unittest.TestCase):
             return
         self.assertAlmostEqual(t, float(threshold_otsu(values)), places=6)
 
+    def test_vessel_threshold_applies_otsu_again_above_it_when_otsu_splits_the_tissue(self):
+        rng = np.random.default_rng(4)
+        # Broad tissue and few vessels: Otsu's two classes split the tissue.
+        values = np.r_[rng.normal(400, 60, 200000), rng.normal(1000, 30, 1500)]
+        self.assertGreater((values > cm.otsu_threshold(values)).mean(), 0.2)
+        t, method = cm.vessel_threshold(values)
+        self.assertEqual(method, "otsu_upper")
+        self.assertGreater(t, 600)
+        self.assertLess(t, 950)
+        # Two clean modes: plain Otsu.
+        values = np.r_[rng.normal(400, 20, 100000), rng.normal(1000, 20, 2000)]
+        self.assertEqual(cm.vessel_threshold(values)[1], "otsu")
 
 if __name__ == "__main__":
     unittest.main()
