@@ -35,6 +35,7 @@ struct ForceInput
   double zoneGain_N = 0.0;           ///< k(P) from the force zones, newtons per unit slope
   double maxZoneGain_N = 0.0;        ///< k(P) in the saturation zone (its largest value), N
   double slopeWindow_mm = 1.0;       ///< the dz/dl stencil's 3D arc length w (SceneTopology)
+  double agentArc_mm = 0.0;          ///< the agent's signed 3D arc position (Tracer::arcLength_mm)
   double zoneFraction = 0.0;         ///< k(P) / gain in [0, 1] (scales spring laws)
   double dt_s = 0.001;               ///< tick period
   const DeviceCapabilities* capabilities = nullptr; ///< may be null (no bounds applied)
@@ -43,7 +44,10 @@ struct ForceInput
 /// What a law may ask of the tick besides a force.
 struct ForceRequest
 {
-  int snapToPoint = -1; ///< >= 0: move the agent to this global point (Ikits' snap-drag)
+  int snapToPoint = -1; ///< >= 0: move the agent to this global point (pop-over to a vessel)
+  /// Non-zero: move the agent along the vessel by this screen vector's projected arc (Ikits'
+  /// eq. 11 snap-drag steps), pixels.
+  Vec2 agentStep_px;
 };
 
 /// A force law. compute() runs in the haptic tick: it must not allocate, lock, log or throw.

@@ -33,11 +33,18 @@ struct HapticParameters
   double lateralProbe_px = 2.0; ///< central difference half-width, px. Default 2 px
   // --- constraint proxy (Ikits) ---
   double proxyStiffness_N_per_m = 200.0; ///< k_c, N/m. Default 200
-  double proxyDamping_N_s_per_m = 0.1;   ///< b_c, N s/m. Default 0.1
-  bool proxyTangentDrag = false;         ///< tangent rule: false Free, true Drag. Default Free
-  double proxyTangentThreshold_N = 0.3;  ///< drag threshold tau_t, N. Default 0.3
-  bool proxySnapDrag = false;            ///< normal rule: false Rigid, true SnapDrag. Default Rigid
-  double proxySnapThreshold_N = 1.5;     ///< snap threshold, N. Default 1.5
+  double proxyDamping_N_s_per_m = 0.1;   ///< b_c on xdot - pdot, N s/m (0: none). Default 0.1
+  bool proxyTangentDrag = false;         ///< tangent rule Drag (Ikits eq. 8). Default Free
+  bool proxyTangentSnap = false;         ///< tangent rule SnapDrag (eq. 11 steps; wins over Drag)
+  double proxyTangentThreshold_N = 0.3;  ///< drag / snap threshold tau_t, N. Default 0.3
+  bool proxySnapDrag = false;            ///< normal rule PopOver (to the vessel under the cursor)
+  bool proxyNormalUnilateral = false;    ///< normal rule Unilateral (eq. 10; PopOver wins)
+  double proxySnapThreshold_N = 1.5;     ///< pop-over threshold, N. Default 1.5
+  bool proxyThresholdFromData = false;   ///< eq. 16: pop-over threshold x frame strength
+  double proxyFriction = 0.0;            ///< mu in the constraint subspace. Default 0
+  double proxyTickSpacing_mm = 0.0;      ///< tick marks every ... mm of arc; 0 none. Default 0
+  double proxyTickForce_N = 0.3;         ///< tick-mark peak force, N. Default 0.3
+  bool proxyFieldForce = false;          ///< add the depth slope (eq. 2) along the vessel
   double proxyKappaLow = 0.15;           ///< stiffness transfer knee s0. Default 0.15
   double proxyKappaHigh = 0.5;           ///< stiffness transfer knee s1. Default 0.5
 

@@ -58,11 +58,21 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Lateral.probe_px = p.lateralProbe_px;
   this->Proxy.stiffness_N_per_m = p.proxyStiffness_N_per_m;
   this->Proxy.damping_N_s_per_m = p.proxyDamping_N_s_per_m;
-  this->Proxy.tangentRule = p.proxyTangentDrag ? ConstraintProxyForceLaw::TangentRule::Drag
-                                               : ConstraintProxyForceLaw::TangentRule::Free;
+  using TangentRule = ConstraintProxyForceLaw::TangentRule;
+  using NormalRule = ConstraintProxyForceLaw::NormalRule;
+  this->Proxy.tangentRule = p.proxyTangentSnap   ? TangentRule::SnapDrag
+                            : p.proxyTangentDrag ? TangentRule::Drag
+                                                 : TangentRule::Free;
   this->Proxy.tangentThreshold_N = p.proxyTangentThreshold_N;
-  this->Proxy.normalRule = p.proxySnapDrag ? ConstraintProxyForceLaw::NormalRule::SnapDrag
-                                           : ConstraintProxyForceLaw::NormalRule::Rigid;
+  this->Proxy.normalRule = p.proxySnapDrag           ? NormalRule::PopOver
+                           : p.proxyNormalUnilateral ? NormalRule::Unilateral
+                                                     : NormalRule::Rigid;
+  this->Proxy.thresholdFromData = p.proxyThresholdFromData;
+  this->Proxy.friction = p.proxyFriction;
+  this->Proxy.tickSpacing_mm = p.proxyTickSpacing_mm;
+  this->Proxy.tickForce_N = p.proxyTickForce_N;
+  this->Proxy.fieldForce = p.proxyFieldForce;
+  this->Proxy.fieldLambda_mm = p.ldgfLambda_mm;
   this->Proxy.snapThreshold_N = p.proxySnapThreshold_N;
   this->Proxy.kappaLow = p.proxyKappaLow;
   this->Proxy.kappaHigh = p.proxyKappaHigh;
@@ -199,7 +209,12 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
       this->Trace.trail_px = this->Active == ForceLawId::ConstraintProxy
                                ? this->Proxy.tangentTrail_px(in.capabilities, pxPerMm, in.dt_s)
                                : 0.0;
-      if (p.tracerRule == 1)
+      if (!std::isfinite(this->Trace.trail_px))
+      {
+        // Ikits eq. 11: the proxy moves only in the law's steps (ForceRequest::agentStep_px).
+        this->Trace.trail_px = 0.0;
+      }
+      else if (p.tracerRule == 1)
       {
         this->Trace.followMovement(*vm, this->Cursor - cursorBefore);
       }
@@ -238,10 +253,15 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
     }
     fin.maxZoneGain_N = std::max(0.0, this->Zones.gain_N);
     fin.slopeWindow_mm = vm->topology().slopeWindow_mm();
+    fin.agentArc_mm = this->Trace.arcLength_mm();
     fin.dt_s = in.dt_s;
     fin.capabilities = in.capabilities;
     ForceRequest req;
     target = this->renderLaws(fin, p, req);
+    if (req.agentStep_px.norm() > 0.0 && this->Trace.state() == InteractionState::Tracing)
+    {
+      this->Trace.followMovement(*vm, req.agentStep_px);
+    }
     if (req.snapToPoint >= 0)
     {
       this->Trace.placeAt(*vm, req.snapToPoint);

@@ -125,6 +125,7 @@ double Tracer::advance(const ViewModel& vm, int a, int b, double fromT, double t
   const double tau = 0.5 * (topo.torsion_per_mm(a) + topo.torsion_per_mm(b));
   const int sign = (b > a) ? 1 : -1;
   this->TorsionAngle += tau * ds * sign;
+  this->ArcLength += ds * sign;
   if (std::fabs(toT - fromT) > 0.0)
   {
     this->Direction = (toT > fromT) ? sign : -sign;

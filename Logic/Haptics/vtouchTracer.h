@@ -74,6 +74,9 @@ public:
   int directionOfTravel() const { return this->Direction; }
   /// Accumulated torsion angle (radians): integral of torsion over the travelled 3D arc length.
   double torsionAngle_rad() const { return this->TorsionAngle; }
+  /// Signed 3D arc length travelled (mm, + toward increasing index): where the agent is along the
+  /// vessel, for tick-mark texture.
+  double arcLength_mm() const { return this->ArcLength; }
   /// The topology the location refers to (0 when none).
   std::uint64_t topologyId() const { return this->TopologyId; }
 
@@ -119,6 +122,7 @@ private:
   AgentLocation Location;
   int Direction = 0;
   double TorsionAngle = 0.0;
+  double ArcLength = 0.0;
   std::uint64_t TopologyId = 0;
 };
 

@@ -367,7 +367,7 @@ TEST(ConstraintProxyForceLaw, DegenerateFrameDoesNotJitter)
   EXPECT_GT(spread(raw), 0.1);
 }
 
-TEST(ConstraintProxyForceLaw, SnapDragPopsOverToNeighbourVesselWhenPushedHard)
+TEST(ConstraintProxyForceLaw, PopOverJumpsToNeighbourVesselWhenPushedHard)
 {
   QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
   QSkeleton other = straightLine({ -20, 3, 0 }, { 20, 3, 0 }, 0.25); // 12 px above
@@ -378,7 +378,7 @@ TEST(ConstraintProxyForceLaw, SnapDragPopsOverToNeighbourVesselWhenPushedHard)
   ForceInput in = tracingInput(*vm, px(0, 0), tracer);
   in.cursor_px = px(0, 2.6); // 2.6 mm across: 0.52 N at 200 N/m, within 5 px of the other line
   ConstraintProxyForceLaw law;
-  law.normalRule = ConstraintProxyForceLaw::NormalRule::SnapDrag;
+  law.normalRule = ConstraintProxyForceLaw::NormalRule::PopOver;
   law.snapThreshold_N = 1.0;
   ForceRequest req;
   law.compute(in, req);
@@ -387,6 +387,136 @@ TEST(ConstraintProxyForceLaw, SnapDragPopsOverToNeighbourVesselWhenPushedHard)
   law.compute(in, req);
   ASSERT_GE(req.snapToPoint, 0);
   EXPECT_EQ(vm->topology().pathOf(req.snapToPoint), 1);
+}
+
+TEST(ConstraintProxyForceLaw, DampingActsOnRelativeVelocitySoFreeMotionFeelsNoDrag)
+{
+  // Ikits eq. 7: b_c (xdot - pdot). The hand and the proxy slide together along a free vessel at
+  // 50 mm/s: no drag at all (b_c xdot was 5 mN against the motion). Across the vessel the proxy
+  // stays: the damper acts on the whole hand velocity there.
+  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  ForceInput in = tracingInput(*vm, px(0, 0), tracer);
+  ConstraintProxyForceLaw law;
+  ForceRequest req;
+  in.handVelocity_Device_mm_per_s = { 50.0, 0.0 };
+  Vec2 f;
+  for (int k = 0; k < 10; ++k)
+  {
+    in.agent.screen_px.x += 0.2; // 50 mm/s x 4 px/mm x 1 ms
+    in.cursor_px = in.agent.screen_px;
+    f = law.compute(in, req);
+  }
+  EXPECT_NEAR(f.norm(), 0.0, 1e-12);
+  in.handVelocity_Device_mm_per_s = { 0.0, 50.0 };
+  f = law.compute(in, req); // the proxy did not move this tick
+  EXPECT_NEAR(f.y, -0.1 * 0.05, 1e-12);
+  law.damping_N_s_per_m = 0.0; // dropped, as Ikits do
+  EXPECT_NEAR(law.compute(in, req).norm(), 0.0, 1e-12);
+}
+
+TEST(ConstraintProxyForceLaw, SnapDragStepsTheProxyByTau)
+{
+  // Eq. 11: the proxy holds until the hand leads it by tau = tau_t / k_c = 1.5 mm along t, then
+  // steps by tau (6 px at 4 px/mm); meanwhile the tangent spring pulls back.
+  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  ForceInput in = tracingInput(*vm, px(0, 0), tracer);
+  ConstraintProxyForceLaw law;
+  law.tangentRule = ConstraintProxyForceLaw::TangentRule::SnapDrag;
+  law.damping_N_s_per_m = 0.0;
+  EXPECT_TRUE(std::isinf(law.tangentTrail_px(nullptr, 4.0))); // the tracer must not follow
+  ForceRequest req;
+  in.cursor_px = in.agent.screen_px + Vec2{ 4.0, 0.0 }; // 1 mm ahead
+  Vec2 f = law.compute(in, req);
+  EXPECT_NEAR(f.x, -0.2, 1e-12);
+  EXPECT_EQ(req.agentStep_px.norm(), 0.0);
+  in.cursor_px = in.agent.screen_px + Vec2{ 8.0, 0.0 }; // 2 mm ahead
+  f = law.compute(in, req);
+  EXPECT_NEAR(req.agentStep_px.x, 6.0, 1e-9);
+  EXPECT_NEAR(req.agentStep_px.y, 0.0, 1e-12);
+}
+
+TEST(ConstraintProxyForceLaw, UnilateralConstraintPushesFromOneSideOnly)
+{
+  // Eq. 10: on the +n side the proxy would follow the hand (no force); on the -n side, a spring.
+  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+  Tracer tracer;
+  ForceInput in = tracingInput(*vm, px(0, 0), tracer);
+  ConstraintProxyForceLaw law;
+  law.normalRule = ConstraintProxyForceLaw::NormalRule::Unilateral;
+  law.damping_N_s_per_m = 0.0;
+  ForceRequest req;
+  in.cursor_px = in.agent.screen_px + Vec2{ 0.0, 4.0 }; // +n (left of +x): free
+  EXPECT_NEAR(law.compute(in, req).norm(), 0.0, 1e-12);
+  in.cursor_px = in.agent.screen_px + Vec2{ 0.0, -4.0 }; // -n: pushed back
+  EXPECT_NEAR(law.compute(in, req).y, 0.2, 1e-12);
+}
+
+TEST(ConstraintProxyForceLaw, SecondaryEffectsFrictionTicksAndFieldForce)
+{
+  const QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 20 }, 0.25);
+  auto vm = buildView(s, topCamera({ 0, 0, 10 }));
+  Tracer tracer;
+  ForceInput in = tracingInput(*vm, px(0, 0), tracer);
+  ConstraintProxyForceLaw law;
+  law.damping_N_s_per_m = 0.0;
+  ForceRequest req;
+  // Friction in the constraint subspace: a 1 mm push across the vessel (0.2 N normal force) with
+  // mu = 0.5 holds the proxy until the tangent force exceeds 0.1 N (a 2 px trail at 4 px/mm).
+  law.friction = 0.5;
+  in.cursor_px = in.agent.screen_px + Vec2{ 0.0, 4.0 };
+  law.compute(in, req);
+  EXPECT_NEAR(law.tangentTrail_px(nullptr, 4.0), 0.1 / 200.0 * 1000.0 * 4.0, 1e-9);
+  law.friction = 0.0;
+  // Tick marks: detents every 5 mm of arc, peak A at +-w around each mark, nothing between.
+  law.tickSpacing_mm = 5.0;
+  EXPECT_EQ(law.tickForce(0.0), 0.0);
+  EXPECT_NEAR(law.tickForce(law.tickWidth_mm), -law.tickForce_N, 1e-12);
+  EXPECT_NEAR(law.tickForce(-law.tickWidth_mm), law.tickForce_N, 1e-12);
+  EXPECT_NEAR(law.tickForce(10.0 + law.tickWidth_mm), -law.tickForce_N, 1e-9);
+  EXPECT_LT(std::fabs(law.tickForce(2.5)), 1e-6);
+  in.cursor_px = in.agent.screen_px;
+  in.agentArc_mm = law.tickWidth_mm;
+  const Vec2 tick = law.compute(in, req);
+  EXPECT_NEAR(tick.dot(in.agent.eta), -law.tickForce_N, 1e-9);
+  // Field force: the depth slope along the vessel, as LDGF.
+  law.tickSpacing_mm = 0.0;
+  law.fieldForce = true;
+  const Vec2 field = law.compute(in, req);
+  const Vec2 ldgf =
+    LdgfForceLaw::evaluate(1.0, in.agent.dz_mm, in.agent.dl_mm, in.agent.eta, law.fieldLambda_mm);
+  EXPECT_NEAR((field - ldgf).norm(), 0.0, 1e-12);
+  EXPECT_GT(ldgf.norm(), 0.4);
+}
+
+TEST(ConstraintProxyForceLaw, PopOverThresholdFollowsFrameStrengthWhenDataDriven)
+{
+  // Eq. 16 with a linear ramp: tau_snap x s. On a weak frame (s = 0.4) a push of 0.52 N pops over
+  // with a 1 N threshold (0.4 N effective); at full strength it does not.
+  QSkeleton s = straightLine({ -20, 0, 0 }, { 20, 0, 0 }, 0.25);
+  QSkeleton other = straightLine({ -20, 3, 0 }, { 20, 3, 0 }, 0.25);
+  other.paths[0].id = 1;
+  s.paths.push_back(other.paths[0]);
+  auto vm = buildView(s, topCamera({ 0, 0, 0 }), 5.0);
+  Tracer tracer;
+  ForceInput in = tracingInput(*vm, px(0, 0), tracer);
+  in.cursor_px = px(0, 2.6);
+  ConstraintProxyForceLaw law;
+  law.normalRule = ConstraintProxyForceLaw::NormalRule::PopOver;
+  law.snapThreshold_N = 1.0;
+  law.thresholdFromData = true;
+  law.kappaLow = 0.0; // keep the normal spring whole on the weak frame
+  law.kappaHigh = 0.01;
+  ForceRequest req;
+  law.compute(in, req);
+  EXPECT_EQ(req.snapToPoint, -1);
+  in.agent.frameStrength = 0.4;
+  law.compute(in, req);
+  EXPECT_GE(req.snapToPoint, 0);
 }
 
 TEST(ForceZones, ZeroProportionalAndSaturationZones)

@@ -207,6 +207,40 @@ TEST(HapticPipeline, ProxyDragHoldsTangentForceAtThresholdWhileDragging)
   EXPECT_NEAR(st.force_N.x, -tau + kc * 2e-3, 0.01);
 }
 
+TEST(HapticPipeline, ProxySnapDragMovesTheAgentInStepsOfTau)
+{
+  // Ikits eq. 11 in the loop: the hand slides along the vessel at 20 mm/s; the agent stands still,
+  // then jumps by tau = tau_t / k_c = 1.5 mm (6 px), and the tangent force is a sawtooth that
+  // never exceeds tau_t.
+  PipelineRig rig;
+  rig.view = buildView(straightLine({ -40, 0, 0 }, { 40, 0, 0 }, 0.25), topCamera({ 0, 0, 0 }));
+  rig.params.forceLaw = ForceLawId::ConstraintProxy;
+  rig.params.proxyTangentSnap = true;
+  rig.params.proxyDamping_N_s_per_m = 0.0;
+  rig.params.maxForceRate_N_per_s = 1e9;
+  ASSERT_EQ(rig.step().state, InteractionState::Tracing);
+  double x0 = rig.step().agentScreen_px.x;
+  int jumps = 0;
+  double worst = 0.0;
+  for (int k = 1; k <= 1000; ++k)
+  {
+    rig.device.position_Device_mm.x = 0.02 * k;
+    const AgentState s = rig.step();
+    const double dx = s.agentScreen_px.x - x0;
+    x0 = s.agentScreen_px.x;
+    if (dx != 0.0)
+    {
+      EXPECT_NEAR(dx, 6.0, 1e-6) << k;
+      ++jumps;
+    }
+    worst = std::max(worst, std::fabs(s.force_N.x));
+  }
+  EXPECT_GE(jumps, 12); // 20 mm of hand travel in 1.5 mm steps
+  EXPECT_LE(jumps, 14);
+  EXPECT_LE(worst, 0.3 + 0.005);
+  EXPECT_GT(worst, 0.28);
+}
+
 TEST(HapticPipeline, ReindexingFreezesCursorWhileHandMoves)
 {
   PipelineRig rig;
