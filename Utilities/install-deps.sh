@@ -13,6 +13,8 @@ packages=(
   libgl-dev libjpeg-dev liblz4-dev liblzma-dev libxml2-dev libnetcdf-dev libpng-dev libtheora-dev
   libtiff-dev libx11-dev zlib1g-dev libdouble-conversion-dev libgdal-dev libopenmpi-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  # the parallel server (mpiexec -np N pvserver) for the client/server mode and its tests
+  openmpi-bin
   # Qt5 for the plugin's GUI parts
   qtbase5-dev libqt5svg5-dev libqt5x11extras5-dev libqt5opengl5-dev qttools5-dev
   qttools5-dev-tools qtxmlpatterns5-dev-tools

@@ -4,6 +4,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -288,8 +289,36 @@ int vtkVesselTouchImageReader::RequestData(vtkInformation*,
   output->SetOrigin(g.origin_mm.data());
   output->SetDirectionMatrix(g.direction.data());
   output->GetPointData()->SetScalars(scalars);
+  this->MarkGhostLayers(outInfo, output);
   this->AddReadStatistics(output);
   return 1;
+}
+
+void vtkVesselTouchImageReader::MarkGhostLayers(vtkInformation* outInfo, vtkImageData* output)
+{
+  // Downstream filters that ask for ghost levels (a distributed filter coding its piece with a
+  // margin) get the executive's piece extent grown by those levels; the layers that belong to a
+  // neighbour are marked in vtkGhostType so they are not counted twice.
+  const int ghostLevels =
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());
+  const int pieces = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
+  if (ghostLevels <= 0 || pieces <= 1)
+  {
+    return;
+  }
+  int whole[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  int owned[6];
+  vtkNew<vtkExtentTranslator> translator;
+  translator->PieceToExtentThreadSafe(
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
+    pieces,
+    0,
+    whole,
+    owned,
+    vtkExtentTranslator::BLOCK_MODE,
+    0);
+  output->GenerateGhostArray(owned);
 }
 
 void vtkVesselTouchImageReader::AddReadStatistics(vtkImageData* output)

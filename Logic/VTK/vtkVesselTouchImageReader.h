@@ -90,6 +90,9 @@ private:
   vtkVesselTouchImageReader(const vtkVesselTouchImageReader&) = delete;
   void operator=(const vtkVesselTouchImageReader&) = delete;
 
+  /// Marks the ghost layers a downstream filter asked for (vtkGhostType) when the piece carries
+  /// them.
+  void MarkGhostLayers(vtkInformation* outInfo, vtkImageData* output);
   /// The last read's statistics as field data: ReaderVoxelBytesRead, ReaderFilesRead,
   /// ReaderReadsPiecesAlone (one value each).
   void AddReadStatistics(vtkImageData* output);

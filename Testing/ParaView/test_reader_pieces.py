@@ -10,7 +10,9 @@ What is checked, for an uncompressed NRRD, NIfTI and MetaImage file, a DICOM ser
 - uncompressed files read exactly their piece's bytes (field data ReaderVoxelBytesRead), a DICOM
   series opens only the files of its piece's slices (ReaderFilesRead), and the reader says which
   files stream (ReaderReadsPiecesAlone: 0 for .nii.gz, which decodes the whole file per piece);
-- the origin, spacing and direction of a piece are those of the whole volume.
+- the origin, spacing and direction of a piece are those of the whole volume;
+- with one ghost level asked, each piece grows by one layer inside the volume and marks exactly
+  that layer as duplicate points (vtkGhostType), as a distributed filter needs.
 Exits non-zero on any failure.
 """
 
@@ -63,6 +65,35 @@ def as_array(image):
     return values.reshape(dims[2], dims[1], dims[0])  # [k, j, i]
 
 
+def check_ghosts(name, reader, whole, whole_extent, n):
+    """Piece r of n with one ghost level: the piece grown by one layer (inside the volume), the
+    grown layers marked as duplicate points in vtkGhostType, the voxels still the file's."""
+    for r in range(n):
+        reader.UpdatePiece(r, n, 0)
+        plain = reader.GetOutput().GetExtent()
+        reader.UpdatePiece(r, n, 1)
+        piece = reader.GetOutput()
+        e = piece.GetExtent()
+        grown = [max(plain[a] - 1, whole_extent[a]) if a % 2 == 0 else
+                 min(plain[a] + 1, whole_extent[a]) for a in range(6)]
+        check(list(e) == grown, "%s: piece %d/%d with a ghost level is %s, not %s"
+              % (name, r, n, list(e), grown))
+        ghosts = piece.GetPointData().GetArray("vtkGhostType")
+        check(ghosts is not None, "%s: piece %d/%d has no vtkGhostType array" % (name, r, n))
+        if ghosts is None:
+            continue
+        flags = vtk_to_numpy(ghosts).reshape(e[5] - e[4] + 1, e[3] - e[2] + 1, e[1] - e[0] + 1)
+        own = np.zeros(flags.shape, dtype=bool)
+        own[plain[4] - e[4]:plain[5] - e[4] + 1, plain[2] - e[2]:plain[3] - e[2] + 1,
+            plain[0] - e[0]:plain[1] - e[0] + 1] = True
+        duplicate = (flags & 1) != 0  # vtkDataSetAttributes::DUPLICATEPOINT
+        check(np.array_equal(duplicate, ~own),
+              "%s: piece %d/%d marks other points as ghosts than its grown layer" % (name, r, n))
+        values = as_array(piece)
+        check(np.array_equal(values, whole[e[4]:e[5] + 1, e[2]:e[3] + 1, e[0]:e[1] + 1]),
+              "%s: piece %d/%d with ghosts holds other values" % (name, r, n))
+
+
 def check_pieces(name, path, streams, dicom=False):
     proxy, reader = reader_for(path)
     reader.UpdatePiece(0, 1, 0)
@@ -113,6 +144,7 @@ def check_pieces(name, path, streams, dicom=False):
             if not streams:
                 check(field(piece, 'ReaderVoxelBytesRead') == whole.size * item,
                       "%s: a compressed piece should decode the whole file" % name)
+        check_ghosts(name, reader, whole, whole_extent, n)
         check(covered.min() == 1 and covered.max() == 1,
               "%s: %d pieces do not tile the volume once (coverage %d..%d)"
               % (name, n, covered.min(), covered.max()))
