@@ -1,5 +1,6 @@
 #include "pqVesselTouchCenterlineExtraction.h"
 
+#include "pqVesselTouchCenterlineOverlay.h"
 #include "pqVesselTouchVolumeCheck.h"
 
 #include "pqApplicationCore.h"
@@ -41,6 +42,7 @@ vtkDataObject* clientOutput(pqPipelineSource* filter)
 
 pqVesselTouchCenterlineExtraction::pqVesselTouchCenterlineExtraction(QObject* parentObject)
   : QObject(parentObject)
+  , Overlay(new pqVesselTouchCenterlineOverlay(this))
 {
 }
 
@@ -85,6 +87,8 @@ void pqVesselTouchCenterlineExtraction::showInView(pqPipelineSource* centerline,
   }
   else if (vtkSMProxy* repr = controller->Show(source, 0, viewProxy))
   {
+    // The representation (the Pipeline Browser's eye, the Properties panel) is drawn under the
+    // MIP's vessels; the overlay draws the same lines on top.
     vtkSMPVRepresentationProxy::SetScalarColoring(repr, nullptr, vtkDataObject::POINT);
     vtkSMPropertyHelper(repr, "AmbientColor").Set(kCenterlineColour, 3);
     vtkSMPropertyHelper(repr, "DiffuseColor").Set(kCenterlineColour, 3);
@@ -92,7 +96,12 @@ void pqVesselTouchCenterlineExtraction::showInView(pqPipelineSource* centerline,
     vtkSMPropertyHelper(repr, "RenderLinesAsTubes", /*quiet=*/true).Set(1);
     repr->UpdateVTKObjects();
   }
-  view->render();
+  this->Overlay->show(centerline, view, visible);
+}
+
+bool pqVesselTouchCenterlineExtraction::isShowingCenterline() const
+{
+  return this->Overlay->isShowing();
 }
 
 pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* volume,
@@ -169,7 +178,7 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* v
     }
   }
   // The view follows: the new centerlines at once, or nothing stale where none were found.
-  showInView(filter, view, this->Result.paths > 0);
+  this->showInView(filter, view, this->Result.paths > 0);
   if (this->Result.paths <= 0)
   {
     Q_EMIT this->failed(

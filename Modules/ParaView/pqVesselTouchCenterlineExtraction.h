@@ -11,6 +11,7 @@
 #include <QString>
 
 class pqPipelineSource;
+class pqVesselTouchCenterlineOverlay;
 class pqView;
 
 struct pqVesselTouchExtractionResult
@@ -49,9 +50,11 @@ public:
   /// What the last run found.
   const pqVesselTouchExtractionResult& result() const;
 
-  /// The filter's output drawn in `view` as tubes in a colour visible on a grey MIP (shown when
-  /// `visible`), and the view rendered. Public for the state-file restore.
-  static void showInView(pqPipelineSource* centerline, pqView* view, bool visible);
+  /// The filter's output drawn in `view` as tubes in a colour visible on a grey MIP, over the
+  /// MIP (pqVesselTouchCenterlineOverlay), when `visible`; hidden otherwise; the view rendered.
+  void showInView(pqPipelineSource* centerline, pqView* view, bool visible);
+  /// Whether the overlay draws centerlines now.
+  bool isShowingCenterline() const;
 
 Q_SIGNALS:
   /// Progress of the running filter, percent [0, 100].
@@ -64,6 +67,7 @@ private:
   pqPipelineSource* filterFor(pqPipelineSource* volume);
 
   QPointer<pqPipelineSource> Centerline;
+  pqVesselTouchCenterlineOverlay* Overlay = nullptr;
   pqVesselTouchExtractionResult Result;
   Q_DISABLE_COPY(pqVesselTouchCenterlineExtraction)
 };

@@ -32,25 +32,90 @@ namespace
 /// lie (the histogram's upper tail). Vessels fill a few percent of an angiogram's field of view;
 /// the automatic estimate (the filter's, from the seed's neighbourhood) replaces it after Extract.
 constexpr double kVesselTailFraction = 0.03;
-/// Voxels sampled for that percentile (evenly strided).
+/// Voxels sampled for the percentiles (evenly strided).
 constexpr vtkIdType kTailSamples = 1 << 18;
+/// A seed is on background unless its value stands this many noise sigmas above the background
+/// level: Rose's criterion for a detectable object (the filter's estimator uses the same rule).
+constexpr double kRoseContrastToNoise = 5.0;
 
 pqRenderView* activeRenderView()
 {
   return qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView());
 }
 
-/// The value with `fraction` of the sampled voxels above it; false without client-side data.
-bool upperTail(pqPipelineSource* volume, double fraction, double& value)
+/// Order statistics of an evenly strided sample of the volume's voxels: the upper tail's start
+/// and the background (the median: vessels fill far less than half an angiogram) with its noise
+/// (P50 - P15.87, one Gaussian sigma from the lower half, which the vessels do not reach).
+struct VoxelSample
+{
+  bool ok = false;
+  double tail = 0.0;
+  double background = 0.0;
+  double noise = 0.0;
+};
+
+/// The volume's voxels in this process (builtin session), null otherwise.
+vtkImageData* clientImage(pqPipelineSource* volume)
 {
   auto* proxy = volume ? vtkSMSourceProxy::SafeDownCast(volume->getProxy()) : nullptr;
   auto* algorithm = proxy ? vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject()) : nullptr;
-  auto* image = algorithm ? vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0)) : nullptr;
+  return algorithm ? vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0)) : nullptr;
+}
+
+/// Median of the 3x3x3 voxels around the world point `point_mm` (the seed): a vessel's lumen
+/// around its brightest voxel, or background around a noise spike. False outside the volume.
+bool neighbourhoodMedian(pqPipelineSource* volume, const double point_mm[3], double& median)
+{
+  vtkImageData* image = clientImage(volume);
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  if (!scalars)
+  {
+    return false;
+  }
+  int centre[3];
+  double pcoords[3];
+  if (!image->ComputeStructuredCoordinates(point_mm, centre, pcoords))
+  {
+    return false;
+  }
+  const int* extent = image->GetExtent();
+  std::vector<double> values;
+  for (int k = -1; k <= 1; ++k)
+  {
+    for (int j = -1; j <= 1; ++j)
+    {
+      for (int i = -1; i <= 1; ++i)
+      {
+        int ijk[3] = {
+          centre[0] + i + extent[0], centre[1] + j + extent[2], centre[2] + k + extent[4]
+        };
+        if (ijk[0] <= extent[1] && ijk[1] <= extent[3] && ijk[2] <= extent[5] &&
+            ijk[0] >= extent[0] && ijk[1] >= extent[2] && ijk[2] >= extent[4])
+        {
+          values.push_back(scalars->GetComponent(image->ComputePointId(ijk), 0));
+        }
+      }
+    }
+  }
+  if (values.empty())
+  {
+    return false;
+  }
+  std::nth_element(
+    values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+  median = values[values.size() / 2];
+  return true;
+}
+
+VoxelSample sampleVoxels(pqPipelineSource* volume)
+{
+  VoxelSample result;
+  vtkImageData* image = clientImage(volume);
   vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
   const vtkIdType count = scalars ? scalars->GetNumberOfTuples() : 0;
   if (count <= 0)
   {
-    return false;
+    return result;
   }
   const vtkIdType stride = std::max<vtkIdType>(1, count / kTailSamples);
   std::vector<double> samples;
@@ -59,11 +124,18 @@ bool upperTail(pqPipelineSource* volume, double fraction, double& value)
   {
     samples.push_back(scalars->GetComponent(i, 0));
   }
-  const auto rank = static_cast<size_t>((1.0 - fraction) * static_cast<double>(samples.size() - 1));
-  std::nth_element(
-    samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(rank), samples.end());
-  value = samples[rank];
-  return true;
+  const auto at = [&samples](double quantile)
+  {
+    const auto rank =
+      static_cast<std::ptrdiff_t>(quantile * static_cast<double>(samples.size() - 1));
+    std::nth_element(samples.begin(), samples.begin() + rank, samples.end());
+    return samples[static_cast<size_t>(rank)];
+  };
+  result.tail = at(1.0 - kVesselTailFraction);
+  result.background = at(0.5);
+  result.noise = result.background - at(0.1587);
+  result.ok = true;
+  return result;
 }
 } // namespace
 
@@ -220,12 +292,21 @@ void pqVesselTouchCenterlineWorkflow::onSeedPicked(double x_mm,
                                 .arg(value));
   const QSignalBlocker blocker(this->Ui.pickSeedButton);
   this->Ui.pickSeedButton->setChecked(false);
-  // The brightest voxel under the click at the volume's minimum: the ray crossed background only.
-  if (value <= this->DataRange[0])
+  // The seed is on background when the voxels around the brightest one under the click (a
+  // lumen, or a noise spike) are not brighter than the background by Rose's criterion, or when
+  // the ray crossed only the volume's minimum (a zero-filled background).
+  double around = value;
+  const bool aroundKnown = neighbourhoodMedian(this->SeedVolume, this->Seed_mm, around);
+  if (value <= this->DataRange[0] ||
+      (this->NoiseKnown && aroundKnown &&
+        around < this->Background + kRoseContrastToNoise * this->Noise))
   {
-    this->setExtractMessage(tr("The seed is on background (value %1, the volume's minimum): "
-                               "click on a bright vessel.")
-                              .arg(value),
+    this->setExtractMessage(tr("The seed is on background (value %1, %2 around it; background "
+                               "%3 ± %4): click on a bright vessel.")
+                              .arg(value)
+                              .arg(around)
+                              .arg(this->Background)
+                              .arg(this->Noise),
       true);
   }
   else if (!this->automaticRange() && value < this->Ui.lowerThreshold->value())
@@ -259,11 +340,12 @@ void pqVesselTouchCenterlineWorkflow::setDataRange(pqPipelineSource* volume)
   this->DataRange[1] = known ? range[1] : 0.0;
   // Small ranges (a normalised volume) need decimals; intensities in the hundreds do not.
   const int decimals = known && range[1] - range[0] < 10.0 ? 3 : 1;
-  double lower = range[1];
-  if (known && !upperTail(volume, kVesselTailFraction, lower))
-  {
-    lower = 0.5 * (range[0] + range[1]); // remote data: no voxels to sample here
-  }
+  const VoxelSample sample = known ? sampleVoxels(volume) : VoxelSample();
+  this->NoiseKnown = sample.ok;
+  this->Background = sample.background;
+  this->Noise = sample.noise;
+  // Remote data (no voxels to sample here): the middle of the range.
+  const double lower = sample.ok ? sample.tail : 0.5 * (range[0] + range[1]);
   for (QDoubleSpinBox* field : fields)
   {
     const QSignalBlocker blocker(field);

@@ -78,6 +78,10 @@ private:
   double Seed_mm[3] = { 0.0, 0.0, 0.0 };
   double SeedValue = 0.0;
   double DataRange[2] = { 0.0, 0.0 };
+  /// The volume's background level and noise (sampled voxels), when known.
+  bool NoiseKnown = false;
+  double Background = 0.0;
+  double Noise = 0.0;
   Q_DISABLE_COPY(pqVesselTouchCenterlineWorkflow)
 };
 

@@ -1,5 +1,7 @@
 #include "pqVesselTouchShowMIPReaction.h"
 
+#include "pqVesselTouchVolumeCheck.h"
+
 #include "pqActiveObjects.h"
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
@@ -39,7 +41,41 @@ void pqVesselTouchShowMIPReaction::updateEnableState()
 {
   pqPipelineSource* source = pqActiveObjects::instance().activeSource();
   pqView* view = pqActiveObjects::instance().activeView();
-  this->parentAction()->setEnabled(source && qobject_cast<pqRenderView*>(view));
+  if (source != this->Watched)
+  {
+    // The active source's data may arrive (Apply) or change after it became active.
+    if (this->Watched)
+    {
+      QObject::disconnect(this->Watched, nullptr, this, nullptr);
+    }
+    this->Watched = source;
+    if (source)
+    {
+      QObject::connect(source,
+        QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated),
+        this,
+        &pqVesselTouchShowMIPReaction::updateEnableState);
+    }
+  }
+  // A 2D image (a PNG, one slice) is refused here: its "MIP" means nothing and renders slowly.
+  const QString problem = source ? pqVesselTouchVolumeCheck::problem(source) : QString();
+  const bool renderView = qobject_cast<pqRenderView*>(view) != nullptr;
+  QAction* action = this->parentAction();
+  action->setEnabled(source && renderView && problem.isEmpty());
+  QString tip = tr("Show the active 3D volume as a maximum-intensity projection");
+  if (!source)
+  {
+    tip += tr(" (select a volume in the Pipeline Browser)");
+  }
+  else if (!problem.isEmpty())
+  {
+    tip += QStringLiteral(": ") + problem;
+  }
+  else if (!renderView)
+  {
+    tip += tr(" (make a render view active)");
+  }
+  action->setToolTip(tip);
 }
 
 void pqVesselTouchShowMIPReaction::onTriggered()
@@ -55,20 +91,15 @@ bool pqVesselTouchShowMIPReaction::showAsMIP(pqPipelineSource* source, pqView* v
     return false;
   }
   source->getSourceProxy()->UpdatePipeline();
-  vtkPVDataInformation* info = source->getOutputPort(0)->getDataInformation();
-  if (!info || info->GetDataSetType() != VTK_IMAGE_DATA || info->GetNumberOfPoints() == 0)
+  const QString problem = pqVesselTouchVolumeCheck::problem(source);
+  if (!problem.isEmpty())
   {
-    qWarning() << "VesselTouch: Show as MIP needs a non-empty image (vtkImageData); "
-               << source->getSMName() << "is not one.";
+    qWarning().noquote() << "VesselTouch: Show as MIP:" << problem;
     return false;
   }
+  vtkPVDataInformation* info = source->getOutputPort(0)->getDataInformation();
   vtkPVArrayInformation* scalars =
     info->GetPointDataInformation()->GetAttributeInformation(vtkDataSetAttributes::SCALARS);
-  if (!scalars || !scalars->GetName())
-  {
-    qWarning() << "VesselTouch: Show as MIP needs point scalars on" << source->getSMName();
-    return false;
-  }
 
   vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
   vtkSMProxy* repr = controller->Show(source->getSourceProxy(), 0, view->getViewProxy());

@@ -1,9 +1,12 @@
 // "Show as MIP": shows the active image in the active render view as a maximum-intensity
-// projection (Volume representation, BlendMode 1, grey transfer function).
+// projection (Volume representation, BlendMode 1, grey transfer function). Disabled, with the
+// reason in its tooltip, unless the active source is a 3D volume (pqVesselTouchVolumeCheck).
 #ifndef pqVesselTouchShowMIPReaction_h
 #define pqVesselTouchShowMIPReaction_h
 
 #include "pqReaction.h"
+
+#include <QPointer>
 
 class pqPipelineSource;
 class pqView;
@@ -17,7 +20,7 @@ public:
   explicit pqVesselTouchShowMIPReaction(QAction* parent);
 
   /// Shows output port 0 of `source` in `view` as a MIP. Returns false (with a qWarning naming
-  /// the reason) when the source is not an image or the view is not a render view.
+  /// the reason) when the source is not a 3D volume or the view is not a render view.
   static bool showAsMIP(pqPipelineSource* source, pqView* view);
 
 protected Q_SLOTS:
@@ -27,6 +30,8 @@ protected:
   void onTriggered() override;
 
 private:
+  /// The active source whose data updates re-check the action (a 2D image disables it).
+  QPointer<pqPipelineSource> Watched;
   Q_DISABLE_COPY(pqVesselTouchShowMIPReaction)
 };
 

@@ -11,16 +11,25 @@
 #include "pqRenderView.h"
 #include "pqServerManagerModel.h"
 
+#include "vtkImageData.h"
+#include "vtkPointData.h"
 #include "vtkSMProxy.h"
+#include "vtkSMSaveScreenshotProxy.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVector.h"
 #include "vtkSMViewProxy.h"
 
 #include <QAbstractButton>
 #include <QAction>
+#include <QApplication>
 #include <QComboBox>
+#include <QDialog>
 #include <QDir>
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QGroupBox>
+#include <QImage>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QLabel>
@@ -246,6 +255,32 @@ QString pqVesselTouchTestDriver::run(const QString& line)
     pqActiveObjects::instance().setActiveSource(source);
     return QString();
   }
+  if (verb == "dismiss")
+  {
+    // ParaView's welcome dialog (shown a while after start-up) or any other stray dialog.
+    int closed = 0;
+    for (QWidget* top : QApplication::topLevelWidgets())
+    {
+      auto* dialog = qobject_cast<QDialog*>(top);
+      if (dialog && dialog->isVisible() && dialog->windowTitle().contains(name))
+      {
+        dialog->reject();
+        ++closed;
+      }
+    }
+    return closed > 0 ? QString() : QString("no dialog %1 open").arg(name);
+  }
+  if (verb == "resize")
+  {
+    QWidget* window = mainWindow();
+    if (!window)
+    {
+      return QString("no main window");
+    }
+    window->move(0, 0);
+    window->resize(name.toInt(), rest.toInt());
+    return QString();
+  }
   if (verb == "python")
   {
     // A script file run by ParaView's Python, as the Python Shell's "Run Script" does.
@@ -266,12 +301,34 @@ QString pqVesselTouchTestDriver::run(const QString& line)
       return QString("no active render view");
     }
     view->forceRender();
-    if (verb == "capture" &&
-        !view->getViewProxy()->WriteImage(name.toUtf8().constData(), "vtkPNGWriter", 1))
+    if (verb == "render")
     {
-      return QString("could not write %1").arg(name);
+      return QString();
     }
-    return QString();
+    // What ParaView's File > Save Screenshot captures, at the view's size.
+    const QSize size = view->widget() ? view->widget()->size() : QSize(400, 400);
+    vtkSmartPointer<vtkImageData> image = vtkSMSaveScreenshotProxy::CaptureImage(
+      view->getViewProxy(), vtkVector2i(size.width(), size.height()));
+    const int* dimensions = image ? image->GetDimensions() : nullptr;
+    vtkUnsignedCharArray* pixels =
+      image ? vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars()) : nullptr;
+    if (!pixels || pixels->GetNumberOfComponents() < 3)
+    {
+      return QString("could not capture the view");
+    }
+    const int components = pixels->GetNumberOfComponents();
+    QImage picture(dimensions[0], dimensions[1], QImage::Format_RGB888);
+    for (int y = 0; y < dimensions[1]; ++y)
+    {
+      uchar* row = picture.scanLine(dimensions[1] - 1 - y); // VTK rows go bottom-up
+      for (int x = 0; x < dimensions[0]; ++x)
+      {
+        const unsigned char* pixel =
+          pixels->GetPointer(static_cast<vtkIdType>(y * dimensions[0] + x) * components);
+        std::copy(pixel, pixel + 3, row + 3 * x);
+      }
+    }
+    return picture.save(name, "PNG") ? QString() : QString("could not write %1").arg(name);
   }
   return QString("unknown verb %1").arg(verb);
 }
@@ -314,7 +371,7 @@ QJsonObject pqVesselTouchTestDriver::state() const
   {
     for (QAction* action : window->findChildren<QAction*>())
     {
-      if (action->objectName().startsWith("VesselTouch") || action->text().contains("VesselTouch"))
+      if (action->objectName().contains("VesselTouch") || action->text().contains("VesselTouch"))
       {
         QJsonObject entry;
         entry.insert("text", action->text());

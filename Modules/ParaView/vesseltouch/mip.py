@@ -14,6 +14,12 @@ def _scalar_array(source, port):
                          % info.GetDataSetTypeAsString())
     if info.GetNumberOfPoints() == 0:
         raise ValueError("ShowAsMIP: the image is empty (see the output messages)")
+    extent = info.GetExtent()
+    dimensions = [extent[2 * i + 1] - extent[2 * i] + 1 for i in range(3)]
+    if min(dimensions) < 2:
+        # A PNG or a single slice: its MIP is the image itself, and volume-renders very slowly.
+        raise ValueError("ShowAsMIP needs a 3D volume; this is a 2D image (%d x %d x %d voxels)"
+                         % tuple(dimensions))
     scalars = info.GetPointDataInformation().GetAttributeInformation(0)  # SCALARS
     if scalars is None or not scalars.GetName():
         raise ValueError("ShowAsMIP needs point scalars on the image")

@@ -66,8 +66,15 @@ class GuiDriver:
         status = open(flag).read()
         if not self.check(status.startswith("ok"), "the scene script succeeded: " + status):
             return False
-        self.dismiss_dialogs()
-        return self.command("state") is not None
+        # ParaView's welcome dialog opens a while after start-up and takes the mouse: wait for
+        # it (a few seconds at most) and close it.
+        deadline = time.time() + 8.0
+        while time.time() < deadline:
+            reply = self.command("dismiss", "Welcome")
+            if reply is None or reply["ok"]:
+                break
+            time.sleep(0.3)
+        return self.command("resize", 1280, 1000) is not None
 
     def command(self, *words, seconds=30):
         """Runs one driver command; returns its reply, with the state in self.state."""

@@ -20,6 +20,7 @@ def main():
     phantom = simple.VesselPhantom(registrationName="Phantom", Shape="Tree",
                                    Dimensions=[64, 64, 64])
     vesseltouch.ShowAsMIP(phantom, view)
+    view.OrientationAxesVisibility = 0  # its white letters would be the brightest "vessel"
     if scene == "volume+2d":
         flat = simple.Wavelet(registrationName="Flat", WholeExtent=[0, 63, 0, 63, 0, 0])
         flat.UpdatePipeline()

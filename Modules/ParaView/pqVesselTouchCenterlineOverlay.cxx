@@ -1,0 +1,138 @@
+#include "pqVesselTouchCenterlineOverlay.h"
+
+#include "pqDataRepresentation.h"
+#include "pqOutputPort.h"
+#include "pqPipelineSource.h"
+#include "pqRenderView.h"
+
+#include "vtkActor.h"
+#include "vtkAlgorithm.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSMRenderViewProxy.h"
+#include "vtkSMSourceProxy.h"
+
+namespace
+{
+/// Orange: far from any grey of the MIP, from the agent's blue cone and its green force arrow.
+constexpr double kColour[3] = { 1.0, 0.55, 0.0 };
+constexpr float kLineWidth_px = 3.0F;
+} // namespace
+
+pqVesselTouchCenterlineOverlay::pqVesselTouchCenterlineOverlay(QObject* parentObject)
+  : QObject(parentObject)
+{
+  this->Overlay->SetInteractive(0);
+  this->Overlay->SetPreserveColorBuffer(1); // the scene below stays
+  this->Overlay->SetPreserveDepthBuffer(0); // and does not hide the lines
+  this->Mapper->SetInputData(this->Lines);
+  this->Mapper->ScalarVisibilityOff();
+  this->Actor->SetMapper(this->Mapper);
+  vtkProperty* property = this->Actor->GetProperty();
+  property->SetColor(kColour[0], kColour[1], kColour[2]);
+  property->SetLineWidth(kLineWidth_px);
+  property->SetRenderLinesAsTubes(true);
+  property->SetLighting(false);
+  this->Overlay->AddActor(this->Actor);
+}
+
+pqVesselTouchCenterlineOverlay::~pqVesselTouchCenterlineOverlay()
+{
+  this->detach();
+}
+
+bool pqVesselTouchCenterlineOverlay::attach(pqView* view)
+{
+  auto* renderView = qobject_cast<pqRenderView*>(view);
+  vtkSMRenderViewProxy* proxy = renderView ? renderView->getRenderViewProxy() : nullptr;
+  vtkRenderer* scene = proxy ? proxy->GetRenderer() : nullptr;
+  vtkRenderWindow* window = proxy ? proxy->GetRenderWindow() : nullptr;
+  if (view == this->View && window == this->Window && this->Window)
+  {
+    return true;
+  }
+  this->detach();
+  if (!scene || !window)
+  {
+    return false;
+  }
+  this->View = view;
+  this->Window = window;
+  this->Layer = window->GetNumberOfLayers();
+  window->SetNumberOfLayers(this->Layer + 1);
+  this->Overlay->SetLayer(this->Layer);
+  this->Overlay->SetActiveCamera(scene->GetActiveCamera());
+  window->AddRenderer(this->Overlay);
+  return true;
+}
+
+void pqVesselTouchCenterlineOverlay::detach()
+{
+  if (this->Window)
+  {
+    this->Window->RemoveRenderer(this->Overlay);
+    if (this->Window->GetNumberOfLayers() == this->Layer + 1)
+    {
+      this->Window->SetNumberOfLayers(this->Layer);
+    }
+  }
+  this->Window = nullptr;
+  this->View = nullptr;
+  this->Layer = -1;
+}
+
+void pqVesselTouchCenterlineOverlay::show(pqPipelineSource* centerline, pqView* view, bool visible)
+{
+  if (this->Centerline != centerline)
+  {
+    if (this->Centerline)
+    {
+      QObject::disconnect(this->Centerline, nullptr, this, nullptr);
+    }
+    this->Centerline = centerline;
+  }
+  auto* proxy = centerline ? vtkSMSourceProxy::SafeDownCast(centerline->getProxy()) : nullptr;
+  auto* algorithm = proxy ? vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject()) : nullptr;
+  auto* output = algorithm ? vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(0)) : nullptr;
+  if (output && visible)
+  {
+    this->Lines->ShallowCopy(output);
+  }
+  else
+  {
+    this->Lines->Initialize();
+  }
+  this->Lines->Modified();
+  if (view && this->attach(view) && centerline)
+  {
+    // The Pipeline Browser's eye on the filter shows and hides the overlay too.
+    if (pqDataRepresentation* repr = centerline->getRepresentation(0, view))
+    {
+      QObject::connect(repr,
+        &pqDataRepresentation::visibilityChanged,
+        this,
+        &pqVesselTouchCenterlineOverlay::followRepresentation,
+        Qt::UniqueConnection);
+    }
+  }
+  this->followRepresentation();
+}
+
+void pqVesselTouchCenterlineOverlay::followRepresentation()
+{
+  pqDataRepresentation* repr =
+    this->Centerline && this->View ? this->Centerline->getRepresentation(0, this->View) : nullptr;
+  this->Actor->SetVisibility(repr && repr->isVisible() && this->Lines->GetNumberOfCells() > 0);
+  if (this->View)
+  {
+    this->View->render();
+  }
+}
+
+bool pqVesselTouchCenterlineOverlay::isShowing() const
+{
+  return this->Window && this->Actor->GetVisibility() && this->Lines->GetNumberOfCells() > 0;
+}

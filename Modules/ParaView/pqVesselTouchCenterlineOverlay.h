@@ -1,0 +1,59 @@
+// The extracted centerlines drawn over the MIP. A maximum-intensity projection is composited over
+// opaque geometry with the opacity of the brightest voxel on the ray, and a centerline runs
+// inside the brightest voxels: drawn as a ParaView representation it is hidden under its own
+// vessel. So the centerlines are drawn by a renderer on a layer above the view's 3D renderer that
+// shares its camera and clears only depth (the technique of pqVesselTouchAgentOverlay, without
+// the cached frames), in a colour that stands out on grey, as tubes. It follows the visibility of
+// the filter's representation in the view (the Pipeline Browser's eye).
+//
+// Attached before the agent overlay (which takes the next layer when tracing starts), the agent
+// is drawn over the centerlines and its cached frames include them.
+#ifndef pqVesselTouchCenterlineOverlay_h
+#define pqVesselTouchCenterlineOverlay_h
+
+#include <QObject>
+#include <QPointer>
+
+#include "vtkNew.h"
+#include "vtkWeakPointer.h"
+
+class pqPipelineSource;
+class pqView;
+class vtkActor;
+class vtkPolyData;
+class vtkPolyDataMapper;
+class vtkRenderWindow;
+class vtkRenderer;
+
+class pqVesselTouchCenterlineOverlay : public QObject
+{
+  Q_OBJECT
+public:
+  explicit pqVesselTouchCenterlineOverlay(QObject* parent = nullptr);
+  ~pqVesselTouchCenterlineOverlay() override;
+
+  /// Draws the current output of `centerline` (its client-side polydata) over `view` when
+  /// `visible`; hides it otherwise. Renders the view.
+  void show(pqPipelineSource* centerline, pqView* view, bool visible);
+  /// Whether centerlines are drawn now (attached, visible and not empty).
+  bool isShowing() const;
+
+private Q_SLOTS:
+  void followRepresentation();
+
+private:
+  bool attach(pqView* view);
+  void detach();
+
+  vtkNew<vtkRenderer> Overlay;
+  vtkNew<vtkPolyData> Lines;
+  vtkNew<vtkPolyDataMapper> Mapper;
+  vtkNew<vtkActor> Actor;
+  vtkWeakPointer<vtkRenderWindow> Window;
+  QPointer<pqView> View;
+  QPointer<pqPipelineSource> Centerline;
+  int Layer = -1;
+  Q_DISABLE_COPY(pqVesselTouchCenterlineOverlay)
+};
+
+#endif
