@@ -16,6 +16,13 @@ public:
   /// Largest change of the rendered force per second, N/s (> 0). Default 100 N/s: a 1 N step is
   /// spread over 10 ticks at 1 kHz, 40 at 4 kHz (the bound is per second, so rate-independent).
   double maxRate_N_per_s = 100.0;
+  /// false (default): the Euclidean bound above (the increment's length <= maxRate dt).
+  /// true: Figure 5 as printed: n = max(|dfx| / threshold, |dfy| / threshold, 1) rounded up,
+  /// increment = df / n, with threshold = maxRate dt per axis. Same direction as the Euclidean
+  /// increment, but the bound is on the larger component, so a diagonal change moves up to
+  /// sqrt(2) faster than an axis-aligned one (the smoothing depends on the force's direction on
+  /// the device): the reason the Euclidean bound is the default.
+  bool perAxis = false;
 
   /// One tick: returns the force to render.
   Vec2 step(const Vec2& target_N, double dt_s);

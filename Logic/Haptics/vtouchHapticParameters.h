@@ -85,6 +85,8 @@ struct HapticParameters
   // --- tracing and smoothing ---
   double tracerDeadBand_px = 0.25;     ///< the agent stays still below this projection, px. 0.25
   double maxForceRate_N_per_s = 100.0; ///< time-domain interpolation bound, N/s. Default 100
+  /// Fig. 5's per-axis threshold and step count instead of the Euclidean bound. Default false
+  bool forceInterpolationPerAxis = false;
   /// Direction hysteresis at projection cusps, fraction of |cursor - agent| (Tracer). 0.1
   double tracerDirectionHysteresis = 0.1;
   /// Screen arc searched ahead for a fold before reversing, px (Tracer). Default 3 px

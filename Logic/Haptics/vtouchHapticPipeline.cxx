@@ -80,6 +80,7 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Zones.zeroBelow = p.zoneZeroBelow;
   this->Zones.saturateAbove = p.zoneSaturateAbove;
   this->Interpolator.maxRate_N_per_s = p.maxForceRate_N_per_s;
+  this->Interpolator.perAxis = p.forceInterpolationPerAxis;
   this->Idle.radius_mm = p.idleRadius_mm;
   this->Idle.dwell_s = p.idleDwell_s;
   this->Idle.ramp_s = p.idleRamp_s;

@@ -557,5 +557,39 @@ TEST(ForceInterpolator, SpreadsLargeStepOverTicksWithBoundedIncrement)
   EXPECT_EQ(interp.step({ std::nan(""), 0 }, dt).norm(), 0.0);
 }
 
+TEST(ForceInterpolator, PerAxisFigure5SplitsAStepIntoNEqualIncrementsButDependsOnDirection)
+{
+  // Fig. 5: n = max(|dfx| / threshold, |dfy| / threshold, 1), increments df / n. The same step of
+  // 1 N takes 10 ticks along an axis and 8 along the diagonal (0.707 N per axis); the Euclidean
+  // bound takes 10 in both directions. Both keep the increment's direction.
+  auto ticksTo = [](const Vec2& target, bool perAxis)
+  {
+    ForceInterpolator interp;
+    interp.maxRate_N_per_s = 100.0; // 0.1 N per 1 ms tick
+    interp.perAxis = perAxis;
+    int ticks = 0;
+    Vec2 previous;
+    while ((interp.output() - target).norm() > 1e-12 && ticks < 1000)
+    {
+      const Vec2 f = interp.step(target, 0.001);
+      const Vec2 d = f - previous;
+      EXPECT_NEAR(d.x * target.y - d.y * target.x, 0.0, 1e-12); // along the step
+      previous = f;
+      ++ticks;
+    }
+    return ticks;
+  };
+  const double r = std::sqrt(0.5);
+  EXPECT_EQ(ticksTo({ 1.0, 0.0 }, true), 10);
+  EXPECT_EQ(ticksTo({ r, r }, true), 8);
+  EXPECT_EQ(ticksTo({ 1.0, 0.0 }, false), 10);
+  EXPECT_EQ(ticksTo({ r, r }, false), 10);
+  // Fig. 5's increments are equal: 0.07071 N per axis on the diagonal, 8 of them.
+  ForceInterpolator interp;
+  interp.perAxis = true;
+  const Vec2 f = interp.step({ r, r }, 0.001);
+  EXPECT_NEAR(f.x, r / 8.0, 1e-12);
+}
+
 } // namespace
 } // namespace vtouch
