@@ -26,6 +26,17 @@
 //   tracer.<rule>.branch.correct_fraction    a hand turning into a branch (10-90 degrees off the
 //       parent, three dither seeds): fraction of runs that end on the branch
 // with <rule> offset (default) or movement (the paper's rule).
+//
+// Hayward & Yi's surface stimulus (their eqs. 4-7): z(x, y) = tan(alpha) x + A sin(omega x) y on
+// three patches (dz/dx = -tan 0.4, 0, +tan 0.7: a trough), A = 1, ~100 oscillations over the
+// line, drawn as 25 parallel centerlines 1 px apart so that the contact map holds the surface;
+// the agent traces y = 0 at 20 mm/s, k = 1 N:
+//   surface.<law>.patch<i>.mean_fx_n     mean force along the motion on patch i (eq. 5 and eq. 7
+//       both give -k dz/dx)
+//   surface.<law>.rms_fy_n               RMS force across the motion (eq. 5: k A |sin(omega x)|,
+//       the texture that "forces the user to track the grooves"; eq. 7: 0)
+//   surface.trace.{x_mm, <law>_fx_n, <law>_fy_n}  the traces (lists) for the chart
+// with <law> change_of_height or lateral_gradient.
 #include "vtouchHapticPipeline.h"
 #include "vtouchHapticSession.h"
 #include "vtouchHapticsTestUtilities.h"
@@ -376,6 +387,112 @@ QSkeleton branchScene(double angle_deg)
   return s;
 }
 
+/// Hayward & Yi eq. 4 on three patches (a trough).
+double surfaceHeight(double x, double y)
+{
+  const double omega = 2.0 * kPi * 100.0 / 60.0; // ~100 oscillations over the 60 mm line
+  const double slope = x < -10.0 ? -std::tan(0.4) : (x > 10.0 ? std::tan(0.7) : 0.0);
+  const double base = x < -10.0 ? slope * (x + 10.0) : (x > 10.0 ? slope * (x - 10.0) : 0.0);
+  return base + 1.0 * std::sin(omega * x) * y;
+}
+
+void printSurfaceStimulus()
+{
+  QSkeleton s;
+  for (int j = -12; j <= 12; ++j)
+  {
+    const double y = 0.25 * j; // 1 px apart at 0.25 mm/px
+    SkeletonPath path;
+    for (int i = 0; i <= 2400; ++i)
+    {
+      const double x = -30.0 + 60.0 * i / 2400.0;
+      SkeletonPoint q;
+      q.position_World_mm = { x, y, surfaceHeight(x, y) }; // world +z is toward the viewer
+      const Vec3 d{ 0.025, 0.0, surfaceHeight(x + 0.0125, y) - surfaceHeight(x - 0.0125, y) };
+      q.tangent_World = d * (1.0 / d.norm());
+      path.points.push_back(q);
+    }
+    path.id = static_cast<int>(s.paths.size());
+    s.paths.push_back(path);
+  }
+  const auto view = buildView(s, topCamera({ 0, 0, 0 }, 0.25), 12.0);
+  const int centre = view->topology().pathBegin(12); // y = 0
+  std::vector<double> xs;
+  std::vector<double> fx[2];
+  std::vector<double> fy[2];
+  const ForceLawId laws[2] = { ForceLawId::ChangeOfHeight, ForceLawId::LateralGradient };
+  const char* keys[2] = { "change_of_height", "lateral_gradient" };
+  for (int l = 0; l < 2; ++l)
+  {
+    HapticPipeline pipeline;
+    HapticParameters p = immediateContact();
+    p.forceLaw = laws[l];
+    p.slopeForceBudget = 0.0; // the paper's k with a 5 N device: no lambda sizing here
+    p.maxForceRate_N_per_s = 1e9;
+    p.lateralProbe_px = 1.0;
+    DeviceCapabilities caps;
+    TickInput in;
+    in.capabilities = &caps;
+    in.view = view.get();
+    in.device.pressure = 1.0;
+    pipeline.setCursor_px(view->screen_px(centre + 100));
+    double sum[3] = { 0, 0, 0 };
+    int count[3] = { 0, 0, 0 };
+    double fy2 = 0.0;
+    int n = 0;
+    for (int k = 0; k < 2500; ++k) // 20 mm/s = 0.08 px per tick, 50 mm
+    {
+      in.device.position_Device_mm.x += 0.02;
+      const AgentState st = pipeline.step(in, p);
+      if (st.state != InteractionState::Tracing || k < 50)
+      {
+        continue;
+      }
+      const double x = st.position_World_mm.x;
+      const int patch = x < -10.5 ? 0 : (x > 10.5 ? 2 : (std::fabs(x) < 9.5 ? 1 : -1));
+      if (patch >= 0)
+      {
+        sum[patch] += st.targetForce_N.x;
+        ++count[patch];
+      }
+      fy2 += st.targetForce_N.y * st.targetForce_N.y;
+      ++n;
+      if (k % 5 == 0)
+      {
+        if (l == 0)
+        {
+          xs.push_back(x);
+        }
+        fx[l].push_back(st.targetForce_N.x);
+        fy[l].push_back(st.targetForce_N.y);
+      }
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+      std::printf(",\n  \"surface.%s.patch%d.mean_fx_n\": %.6g",
+        keys[l],
+        i,
+        count[i] ? sum[i] / count[i] : std::nan(""));
+    }
+    std::printf(
+      ",\n  \"surface.%s.rms_fy_n\": %.6g", keys[l], n ? std::sqrt(fy2 / n) : std::nan(""));
+  }
+  auto list = [](const char* key, const std::vector<double>& v)
+  {
+    std::printf(",\n  \"surface.trace.%s\": [", key);
+    for (std::size_t i = 0; i < v.size(); ++i)
+    {
+      std::printf("%s%.5g", i ? ", " : "", v[i]);
+    }
+    std::printf("]");
+  };
+  list("x_mm", xs);
+  list("change_of_height_fx_n", fx[0]);
+  list("change_of_height_fy_n", fy[0]);
+  list("lateral_gradient_fx_n", fx[1]);
+  list("lateral_gradient_fy_n", fy[1]);
+}
+
 void printTracerComparison()
 {
   for (int rule : { 0, 1 })
@@ -546,6 +663,7 @@ int main(int argc, char** argv)
     }
   }
   printTracerComparison();
+  printSurfaceStimulus();
   std::printf("\n}\n");
   return 0;
 }

@@ -318,7 +318,8 @@ int main(int argc, char** argv)
   printMap("ldgf_lambda_mm",
     logspace(1e-4, 1.0, points),
     rates,
-    defaults.ldgfLambda_mm,
+    // The default in use: sized for the default 3 N stylus (Yi & Hayward 4.1, LdgfForceLaw).
+    std::max(defaults.ldgfLambda_mm, defaults.zoneGain_N * 1.0 / (defaults.slopeForceBudget * 3.0)),
     [&cusp, seconds, &lambdaReference](double lambda, double rate)
     {
       return cuspCellAgainstReference(
@@ -328,6 +329,7 @@ int main(int argc, char** argv)
         [lambda](HapticParameters& p)
         {
           p.ldgfLambda_mm = lambda;
+          p.slopeForceBudget = 0.0; // the lambda under test, not the device-sized one
           p.maxForceRate_N_per_s = 1e12;
         },
         lambdaReference,

@@ -11,6 +11,8 @@ Charts (each captioned with the machine, the commit and quick/full mode):
   force_error_vs_tick_cost.png     force error at 1 kHz against the tick's median cost
   tracer_rules.png                 the two tracing rules: tracking error, force steps at the
                                    spiral's cusps, branch choices
+  surface_stimulus.png             Hayward & Yi's surface (eqs. 4-7): change of height against
+                                   the lateral gradient along the traced line
   loop_period_error.png            period-error histograms at 1, 2, 5, 10 kHz, with and without
                                    a render load
   stability_maps.png               stable/unstable over coupler k_c, LDGF lambda, force
@@ -223,6 +225,31 @@ def chart_tracer(out, results):
     save(fig, out, "tracer_rules.png", results)
 
 
+def chart_surface(out, results):
+    """Hayward & Yi's surface stimulus (eqs. 4-7): change of height against the lateral gradient."""
+    raw = load(out, "force")
+    if not raw or "surface.trace.x_mm" not in raw:
+        return
+    x = np.array(raw["surface.trace.x_mm"])
+    fig, axes = plt.subplots(2, 1, figsize=(12, 6.5), sharex=True)
+    for law, label, style in (("lateral_gradient", "lateral gradient (eq. 5)", "-"),
+                              ("change_of_height", "change of height (eq. 7)", "-")):
+        axes[0].plot(x, raw["surface.trace.%s_fx_n" % law], style, lw=1.2, label=label)
+        axes[1].plot(x, raw["surface.trace.%s_fy_n" % law], style, lw=0.8, label=label)
+    expected = np.where(x < -10, np.tan(0.4), np.where(x > 10, -np.tan(0.7), 0.0))
+    axes[0].plot(x, expected, "k:", lw=1, label="-k dz/dx (k = 1 N)")
+    axes[0].set_ylabel("force along the motion (N)")
+    axes[1].set_ylabel("force across the motion (N)")
+    axes[1].set_xlabel("x along the trace y = 0 (mm); patches: slope -tan 0.4 | 0 | +tan 0.7")
+    axes[0].set_title("Hayward & Yi's surface z = tan(a) x + A sin(wx) y, traced at 20 mm/s: both "
+                      "render the slope; only the lateral gradient adds the cross texture",
+                      fontsize=10)
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    save(fig, out, "surface_stimulus.png", results)
+
+
 def chart_loop(out, results):
     raw = load(out, "haptic")
     if not raw:
@@ -432,7 +459,7 @@ def main():
         print("charts: no results: %s" % e, file=sys.stderr)
         return 1
     for chart in (chart_centerline_accuracy, chart_centerline_scaling, chart_force, chart_tracer,
-                  chart_loop, chart_stability, chart_render, chart_raw_centerline, summary):
+                  chart_surface, chart_loop, chart_stability, chart_render, chart_raw_centerline, summary):
         try:
             chart(out, results)
         except Exception as e:  # noqa: BLE001  (one broken chart must not hide the others)

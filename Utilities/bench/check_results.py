@@ -29,6 +29,8 @@ REQUIRED = (
        for scene in ("helix", "spiral")
        for what in ("mean_error_px", "max_error_px", "max_force_step_n", "reached_fraction")]
     + ["tracer.%s.branch.correct_fraction" % rule for rule in ("offset", "movement")]
+    + ["surface.%s.%s" % (law, what) for law in ("change_of_height", "lateral_gradient")
+       for what in ("patch0.mean_fx_n", "patch1.mean_fx_n", "patch2.mean_fx_n", "rms_fy_n")]
     + ["stability.%s.1000hz.max_stable" % m
        for m in ("coupler_kc_n_per_m", "ldgf_lambda_mm", "interpolation_n_per_s")]
     + ["render.agent_fps_cached", "render.agent_fps_full", "meta.quick"]
