@@ -9,10 +9,17 @@
 
 #include "vtouchViewPointerMapping.h"
 
+#include <QCoreApplication>
 #include <QEvent>
 #include <QMouseEvent>
 #include <QWidget>
 #include <QtDebug>
+
+namespace
+{
+/// Held with a left drag while tracing: rotates the camera instead (issue 20 item 5).
+constexpr Qt::KeyboardModifier kRotateModifier = Qt::ControlModifier;
+} // namespace
 
 class pqVesselTouchPointerInteraction::pqInternals
 {
@@ -133,8 +140,11 @@ void pqVesselTouchPointerInteraction::setEnabled(bool enabled)
   }
   else
   {
-    this->stopSession();
+    // The session keeps running (Stop is the panel's): the mouse only stops feeding it, and the
+    // camera is the mouse's again.
+    this->releaseForces();
   }
+  this->Rotating = false;
   Q_EMIT this->enabledChanged(enabled);
 }
 
@@ -215,6 +225,43 @@ void pqVesselTouchPointerInteraction::stopSession()
   }
 }
 
+bool pqVesselTouchPointerInteraction::rotateCamera(QWidget* widget, QMouseEvent* mouse)
+{
+  // Ctrl + left drag while tracing rotates the camera: ParaView gets the drag as a plain left
+  // drag (its rotation; Ctrl + left would be its zoom), the session keeps running, the cursor
+  // holds where it was, and the agent display's camera push re-projects the agent and its force.
+  const bool press =
+    mouse->type() == QEvent::MouseButtonPress || mouse->type() == QEvent::MouseButtonDblClick;
+  if (!this->Rotating)
+  {
+    if (!press || mouse->button() != Qt::LeftButton || !(mouse->modifiers() & kRotateModifier) ||
+        !this->isActive(Qt::NoModifier))
+    {
+      return false;
+    }
+    this->Rotating = true;
+  }
+  const bool release =
+    mouse->type() == QEvent::MouseButtonRelease && mouse->button() == Qt::LeftButton;
+  QMouseEvent plain(
+    mouse->type() == QEvent::MouseButtonDblClick ? QEvent::MouseButtonPress : mouse->type(),
+    mouse->localPos(),
+    mouse->windowPos(),
+    mouse->screenPos(),
+    mouse->button(),
+    mouse->buttons(),
+    mouse->modifiers() & ~kRotateModifier);
+  this->Forwarding = true;
+  QCoreApplication::sendEvent(widget, &plain);
+  this->Forwarding = false;
+  if (release)
+  {
+    this->Rotating = false;
+  }
+  ++this->CameraDragEvents;
+  return true;
+}
+
 void pqVesselTouchPointerInteraction::onWidgetDestroyed()
 {
   this->Watched.clear();
@@ -237,6 +284,10 @@ bool pqVesselTouchPointerInteraction::eventFilter(QObject* watched, QEvent* even
   {
     return this->QObject::eventFilter(watched, event);
   }
+  if (this->Forwarding)
+  {
+    return this->QObject::eventFilter(watched, event); // our own rotation event, for ParaView
+  }
   switch (event->type())
   {
     case QEvent::MouseMove:
@@ -245,6 +296,10 @@ bool pqVesselTouchPointerInteraction::eventFilter(QObject* watched, QEvent* even
     case QEvent::MouseButtonDblClick:
     {
       auto* mouse = static_cast<QMouseEvent*>(event);
+      if (this->rotateCamera(widget, mouse))
+      {
+        return true;
+      }
       if (!this->isActive(mouse->modifiers()))
       {
         if (this->Internals->Pressed)

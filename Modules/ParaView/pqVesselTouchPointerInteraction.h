@@ -6,9 +6,12 @@
 // 0 (SetPointerButtons: returns from tracing to exploring). Those events do not reach ParaView's
 // camera interaction; every other event (and the wheel: zoom) still does.
 //
+// Ctrl + left drag rotates the camera while tracing (ParaView gets a plain left drag): the session
+// keeps running, the cursor holds, and the agent is re-projected with the new camera.
+//
 // Forces stop (pressure 0: zero force-zone gain, the cursor holds) when the pointer leaves the
-// view or the view loses focus or is hidden; the session is stopped when tracing is disabled or
-// the view is destroyed.
+// view or the view loses focus or is hidden, or when tracing is disabled (the session keeps
+// running: Stop is the panel's); the session is stopped when the view is destroyed.
 //
 // setEnabled(true) switches the session to the POINTER device and starts it when it is not
 // running one already.
@@ -24,6 +27,7 @@
 class pqRenderView;
 class pqView;
 class vtkSMProxy;
+class QMouseEvent;
 class QWidget;
 
 class pqVesselTouchPointerInteraction : public QObject
@@ -44,6 +48,8 @@ public:
 
   /// Pointer events sent to the session (for tests).
   long long pointerEvents() const { return this->PointerEvents; }
+  /// Mouse events of Ctrl + left drags handed to the camera (for tests).
+  long long cameraDragEvents() const { return this->CameraDragEvents; }
 
 public Q_SLOTS:
   /// The render view whose widget is watched (null: none).
@@ -63,6 +69,9 @@ protected:
 private:
   class pqInternals;
   bool isActive(Qt::KeyboardModifiers modifiers) const;
+  /// A Ctrl + left drag while tracing: forwarded to ParaView as a plain left drag. True when
+  /// `mouse` belongs to one (consumed).
+  bool rotateCamera(QWidget* widget, QMouseEvent* mouse);
   bool ensurePointerSessionRunning();
   void movePointer(QWidget* widget, double x, double y);
   void releaseForces();
@@ -83,6 +92,9 @@ private:
   bool ControlsSession = true;
   Qt::KeyboardModifiers Modifiers = Qt::NoModifier;
   long long PointerEvents = 0;
+  long long CameraDragEvents = 0;
+  bool Rotating = false;
+  bool Forwarding = false;
   Q_DISABLE_COPY(pqVesselTouchPointerInteraction)
 };
 

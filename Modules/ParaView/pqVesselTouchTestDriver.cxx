@@ -11,9 +11,11 @@
 #include "pqRenderView.h"
 #include "pqServerManagerModel.h"
 
+#include "vtkCamera.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 #include "vtkSMProxy.h"
+#include "vtkSMRenderViewProxy.h"
 #include "vtkSMSaveScreenshotProxy.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
@@ -198,6 +200,14 @@ QString pqVesselTouchTestDriver::run(const QString& line)
   if (verb == "click" || verb == "check")
   {
     auto* button = findNamed<QAbstractButton>(name);
+    QAction* action = button ? nullptr : findNamed<QAction>(name);
+    if (verb == "check" && action && action->isCheckable())
+    {
+      // A toolbar toggle, as its button sets it (queued, like trigger).
+      const bool checked = rest.trimmed() == "1";
+      QTimer::singleShot(0, action, [action, checked]() { action->setChecked(checked); });
+      return QString();
+    }
     if (!button)
     {
       return QString("no button %1").arg(name);
@@ -401,6 +411,11 @@ QJsonObject pqVesselTouchTestDriver::state() const
     {
       state.insert("view_rect", screenRect(widget));
     }
+    vtkCamera* camera = view->getRenderViewProxy()->GetActiveCamera();
+    const double* position = camera->GetPosition();
+    const double* up = camera->GetViewUp();
+    state.insert("camera_position", QJsonArray{ position[0], position[1], position[2] });
+    state.insert("camera_view_up", QJsonArray{ up[0], up[1], up[2] });
   }
 
   pqPipelineSource* sessionSource = model->findItem<pqPipelineSource*>("VesselTouchSession");

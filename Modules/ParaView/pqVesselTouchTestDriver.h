@@ -7,8 +7,8 @@
 // xdotool), the pipeline sources, the active view's screen geometry and the session's status.
 //
 // Verbs: state | trigger ACTION (queued: the reply comes before any dialog it opens) | click BUTTON
-// | check BUTTON 0|1 | set WIDGET VALUE | select SOURCE ("" for none) | python SCRIPT (run in the
-// GUI's Python) | capture PNG (the active render view's image) | render.
+// | check BUTTON|ACTION 0|1 | set WIDGET VALUE | select SOURCE ("" for none) | python SCRIPT (run
+// in the GUI's Python) | capture PNG (the active render view's image) | render.
 #ifndef pqVesselTouchTestDriver_h
 #define pqVesselTouchTestDriver_h
 

@@ -19,7 +19,8 @@ pqVesselTouchTraceWithMouseAction::pqVesselTouchTraceWithMouseAction(QObject* pa
   this->setObjectName("actionVesselTouchTraceWithMouse");
   this->setCheckable(true);
   this->setToolTip(tr("Feel the vessels with the mouse (pseudo-haptics): the mouse drives the "
-                      "haptic session's pointer device; a left click returns to exploring"));
+                      "haptic session's pointer device; a left click returns to exploring; "
+                      "Ctrl + left drag rotates the view while tracing"));
   this->Interaction = new pqVesselTouchPointerInteraction(this);
   QObject::connect(this, &QAction::toggled, this, &pqVesselTouchTraceWithMouseAction::rebind);
   QObject::connect(&pqActiveObjects::instance(),

@@ -13,7 +13,7 @@
 
 namespace
 {
-template <typename Action>
+template<typename Action>
 Action* findToolBarAction()
 {
   QWidget* mainWindow = pqCoreUtilities::mainWidget();
@@ -42,18 +42,17 @@ void pqVesselTouchViewBinding::setSession(vtkSMProxy* session)
 bool pqVesselTouchViewBinding::sessionUsesPointer() const
 {
   return this->Session && this->Session->GetProperty("DeviceType") &&
-    vtkSMPropertyHelper(this->Session, "DeviceType").GetAsInt() ==
-    vtkVesselTouchHapticSession::POINTER;
+         vtkSMPropertyHelper(this->Session, "DeviceType").GetAsInt() ==
+           vtkVesselTouchHapticSession::POINTER;
 }
 
 void pqVesselTouchViewBinding::setRunning(bool running)
 {
-  if (running)
+  // The agent is drawn while the session runs; after Stop (or a fault) the cone would show a
+  // hand that no longer acts, so it goes with the session.
+  if (auto* agent = findToolBarAction<pqVesselTouchShowAgentAction>())
   {
-    if (auto* agent = findToolBarAction<pqVesselTouchShowAgentAction>())
-    {
-      agent->setChecked(true);
-    }
+    agent->setChecked(running);
   }
   auto* mouse = findToolBarAction<pqVesselTouchTraceWithMouseAction>();
   if (!mouse)

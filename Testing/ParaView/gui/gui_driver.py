@@ -39,6 +39,7 @@ class GuiDriver:
             "VESSELTOUCH_GUI_DRIVER": self.commands,
             "VESSELTOUCH_SCENE": scene,
             "VESSELTOUCH_DONE_FLAG": os.path.join(self.work, "done"),
+            "VESSELTOUCH_AGENT_REPORT": os.path.join(self.work, "agent.json"),
         })
         self.env.update(extra_env or {})
         script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "gui_scene.py")

@@ -9,6 +9,7 @@ ParaView's reader. Checks (issue 20 items 4, 7, 8, 9):
 - a seed clicked on the brightest vessel in the view, then Extract: the centerlines appear in the
   view at once, in a colour that is not grey (the pixels of ParaView's own capture), the used
   intensity range is shown and lies inside the data's range, the progress bar is full;
+- Start then Stop: no agent cone left in the view;
 - a failing Extract (the range set above the seed's value, Automatic off): a message beside
   Extract, the progress bar back to 0, and no centerline pixels left in the view.
 """
@@ -30,6 +31,16 @@ def coloured_pixels(png):
     # or blue-grey, the orientation axes are pure red, green and blue.
     r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
     return int(numpy.count_nonzero((r > 170) & (g > 80) & (g < 200) & (b < 90) & (r - g > 40)))
+
+
+def agent_pixels(png):
+    """Strongly coloured pixels that are not the centerlines' orange: the agent's cone and its
+    force arrow."""
+    rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int)
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    orange = (r > 170) & (g > 80) & (g < 200) & (b < 90) & (r - g > 40)
+    saturated = rgb.max(axis=2) - rgb.min(axis=2) > 80
+    return int(numpy.count_nonzero(saturated & ~orange))
 
 
 def brightest_and_darkest(png):
@@ -118,6 +129,19 @@ def body(gui, check):
     check(lower["minimum"] <= lower["value"] <= upper["value"] <= upper["maximum"],
           "the range used lies in the data's range (%r, %r)" % (lower, upper))
     gui.screenshot(os.path.join(gui.work, "screen_after_extract.png"))
+
+    # Start on the extracted centerlines, then Stop: the agent goes with the session.
+    gui.run("click", "startButton")
+    check(gui.wait_until(lambda s: s["session"]["running"], seconds=10), "Start runs the session")
+    check(gui.wait_until(lambda s: s["actions"]["actionVesselTouchShowAgent"]["checked"]),
+          "the agent is drawn while the session runs")
+    gui.run("click", "stopButton")
+    check(gui.wait_until(lambda s: not s["session"]["running"], seconds=10), "Stop stops it")
+    check(gui.wait_until(lambda s: not s["actions"]["actionVesselTouchShowAgent"]["checked"]),
+          "the agent display is switched off after Stop")
+    stopped = gui.capture("after_stop.png")
+    count = agent_pixels(stopped) if stopped else -1
+    check(count == 0, "no cone or force arrow left in the view after Stop (%d pixels)" % count)
 
     # A failing Extract: the range above every voxel of the vessel.
     gui.run("check", "automaticRange", 0)

@@ -3,7 +3,9 @@
   phantom   a VesselPhantom tree ("Phantom") shown as a MIP, active (the clinician's start)
   volume+2d the phantom, plus a 2D image ("Flat", a 64 x 64 x 1 wavelet) and, if
             VESSELTOUCH_SCENE_PNG names a file, that PNG opened by ParaView's reader ("Png")
-No session is created: the panel does what the user asks. Writes "ok" (or the error) to
+  tracing   the phantom, and vesseltouch.logic() on its analytic centerline with the pointer
+            device (the mouse), started
+Otherwise no session is created: the panel does what the user asks. Writes "ok" (or the error) to
 $VESSELTOUCH_DONE_FLAG.
 """
 
@@ -27,6 +29,13 @@ def main():
         png = os.environ.get("VESSELTOUCH_SCENE_PNG")
         if png:
             simple.PNGSeriesReader(registrationName="Png", FileNames=[png]).UpdatePipeline()
+    if scene == "tracing":
+        # The session on the phantom's analytic centerline with the mouse as its device, running.
+        session = vesseltouch.logic()
+        session.SetCenterline(phantom)  # port 1: the analytic centerline
+        session.SetCameraFromView(view)
+        session.SetDevice("pointer")
+        session.Start()
     simple.SetActiveSource(phantom)
     simple.Render(view)
 
