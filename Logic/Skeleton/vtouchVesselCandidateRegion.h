@@ -34,7 +34,7 @@ public:
     std::array<std::int64_t, 3> seed{ 0, 0, 0 }; ///< voxel index (may be outside the volume)
     bool cutNonTubular = true;
     /// Frangi's c as a fraction of the vessel contrast (V - B); tube cores from this tubularity.
-    double structurenessFraction = 0.05;
+    double structurenessFraction = 0.1;
     float coreTubularity = 0.3F;
     float thinCoreTubularity = 0.1F;
     int maximumDepth_voxels = 48; ///< caps the largest scale (time), in voxels of the grid

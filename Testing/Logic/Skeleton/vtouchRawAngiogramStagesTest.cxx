@@ -162,25 +162,26 @@ TEST(RegionDepth, DepthCountsLayersToTheBorder)
 
 TEST(RestrictedTubularity, TubeScoresAbovePlateAndBlob)
 {
-  SyntheticAngiogram g({ 64, 48, 48 });
-  g.addTube({ 4, 12, 24 }, { 60, 12, 24 }, 2.0, kContrast);
+  // Each shape alone (more than three largest scales apart).
+  SyntheticAngiogram g({ 64, 64, 48 });
+  g.addTube({ 4, 8, 24 }, { 60, 8, 24 }, 2.0, kContrast);
   g.addBox({ 4, 26, 4 }, { 60, 30, 44 }, kContrast); // a plate 5 voxels thick
-  g.addBall({ 32, 40, 24 }, 5.0, kContrast);
+  g.addBall({ 32, 52, 24 }, 5.0, kContrast);
   g.addNoise(20.0, 11);
   IntensityRange r;
   r.lower = 550.0;
   r.upper = 1e9;
   const SparseVesselMask region = SeededRegionGrower::threshold(g.view(), r);
   RestrictedTubularity::Parameters p;
-  p.structureness = 0.25 * kContrast;
+  p.structureness = VesselCandidateRegion::Settings{}.structurenessFraction * kContrast;
   p.sigmaMaximum_mm = 5.0;
   const auto t = RestrictedTubularity::compute(g.view(), region, RegionDepth::layers(region), p);
   const auto score = [&](std::int64_t i, std::int64_t j, std::int64_t k)
-  { return t.tubularity[region.rank(static_cast<std::uint64_t>(i + 64 * (j + 48 * k)))]; };
+  { return t.tubularity[region.rank(static_cast<std::uint64_t>(i + 64 * (j + 64 * k)))]; };
   const float core = VesselCandidateRegion::Settings{}.coreTubularity;
-  EXPECT_GT(score(32, 12, 24), core) << "tube axis";
+  EXPECT_GT(score(32, 8, 24), core) << "tube axis";
   EXPECT_LT(score(32, 28, 24), 0.1F) << "plate centre";
-  EXPECT_LT(score(32, 40, 24), core) << "blob centre";
+  EXPECT_LT(score(32, 52, 24), core) << "blob centre";
   EXPECT_GT(t.hessianVoxels, 0u);
 }
 
@@ -193,7 +194,7 @@ TEST(RestrictedTubularity, OnlyTilesNearTheRegionAreComputed)
   r.upper = 1e9;
   const SparseVesselMask region = SeededRegionGrower::threshold(g.view(), r);
   RestrictedTubularity::Parameters p;
-  p.structureness = 0.25 * kContrast;
+  p.structureness = VesselCandidateRegion::Settings{}.structurenessFraction * kContrast;
   p.sigmaMaximum_mm = 1.5;
   const auto t = RestrictedTubularity::compute(g.view(), region, RegionDepth::layers(region), p);
   const std::uint64_t perScaleVolume = 128u * 128u * 64u;
