@@ -181,6 +181,10 @@ void vtkVesselTouchHapticSession::PushParameters()
   p.zoom = this->Zoom;
   p.pixelsPerDeviceMm = this->PixelsPerDeviceMm;
   p.maxForceRate_N_per_s = this->MaxForceRate;
+  p.contactDwell_s = this->ContactDwell;
+  p.contactApproachAtStart = this->ContactApproachAtStart;
+  p.tracerRule = this->TracerRule;
+  p.slopeForceBudget = this->SlopeForceBudget;
   s.setParameters(p);
   if (s.captureRadius_px() != this->CaptureRadius)
   {

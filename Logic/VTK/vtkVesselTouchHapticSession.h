@@ -186,6 +186,20 @@ public:
   vtkGetMacro(MaxForceRate, double);
   vtkSetMacro(Crossfade, double);
   vtkGetMacro(Crossfade, double);
+  /// Contact (Yi & Hayward 3.2, vtouch::ContactGate): dwell within the capture radius before the
+  /// agent is captured, s (default 0.05; 0 = immediate); whether the cursor must first come from
+  /// outside every capture radius after Start (default on). After a click it always must.
+  vtkSetMacro(ContactDwell, double);
+  vtkGetMacro(ContactDwell, double);
+  vtkSetMacro(ContactApproachAtStart, bool);
+  vtkGetMacro(ContactApproachAtStart, bool);
+  /// Tracing rule: 0 offset (default), 1 the paper's per-tick movement rule (3.2.1).
+  vtkSetClampMacro(TracerRule, int, 0, 1);
+  vtkGetMacro(TracerRule, int);
+  /// Fraction of the device's force limit the slope laws may reach where dl -> 0 (lambda sized
+  /// from it, 4.1); 0 = lambda as set. Default 0.9.
+  vtkSetMacro(SlopeForceBudget, double);
+  vtkGetMacro(SlopeForceBudget, double);
 
   // --- running ---
   /// Real-time loop rate, Hz, [100, 10000]. Default 1000.
@@ -310,6 +324,10 @@ private:
   double Zoom = 1.0;
   double PixelsPerDeviceMm = 4.0;
   double MaxForceRate = 100.0;
+  double ContactDwell = 0.05;
+  bool ContactApproachAtStart = true;
+  int TracerRule = 0;
+  double SlopeForceBudget = 0.9;
   double Crossfade = 0.005;
 
   double LoopRate = 1000.0;

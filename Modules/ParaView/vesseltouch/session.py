@@ -308,6 +308,26 @@ class HapticSession(object):
             props["ProxySnapDrag"] = 1 if snap_drag else 0
         self._set(**props)
 
+    def SetContact(self, dwell_s=None, approach_at_start=None):
+        """When the exploring cursor captures the agent (Yi & Hayward section 3.2): after
+        ``dwell_s`` within the capture radius (default 0.05 s; 0 = at once), and, with
+        ``approach_at_start``, only once the cursor has come from outside every capture radius
+        after Start. After a click it always must leave the vessel first."""
+        props = {}
+        if dwell_s is not None:
+            props["ContactDwell"] = float(dwell_s)
+        if approach_at_start is not None:
+            props["ContactApproachAtStart"] = 1 if approach_at_start else 0
+        self._set(**props)
+
+    def SetTracerRule(self, rule):
+        """'offset' (default) or 'movement' (Yi & Hayward section 3.2.1 as written)."""
+        rules = {"offset": 0, "movement": 1}
+        key = str(rule).lower()
+        if key not in rules:
+            raise ValueError("unknown tracer rule %r (offset or movement)" % (rule,))
+        self._set(TracerRule=rules[key])
+
     def SetZoom(self, r):
         """Haptic zoom r = cursor movement / hand movement, clamped to [0.1, 10]."""
         self._set(Zoom=float(r))
