@@ -344,9 +344,9 @@ QSkeleton VascularTreeGenerator::build()
     }
     const double theta1 = murrayAngle(r0, r1, r2);
     const double theta2 = murrayAngle(r0, r2, r1);
-    const Segment& parent = this->Segments[leaf];
-    const Vec3 end = parent.p1;
-    const Vec3 tangent = normalized(parent.m1);
+    // Copies: the children are pushed onto Segments below.
+    const Vec3 end = this->Segments[leaf].p1;
+    const Vec3 tangent = normalized(this->Segments[leaf].m1);
     for (int attempt = 0; attempt < kAttempts; ++attempt)
     {
       // Later attempts try shorter children (a crowded or small volume still branches).
