@@ -290,6 +290,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   double lower = this->LowerThreshold, upper = this->UpperThreshold;
   double seed[3] = { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] };
   std::shared_ptr<const vtouch::SparseVesselMask> mask;
+  std::vector<std::pair<std::string, double>> candidateSeconds;
   if (this->AutomaticIntensityRange)
   {
     vtouch::CandidateRegionRequest request;
@@ -307,6 +308,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
       vtkErrorMacro(<< this->ExtractionMessage);
       return 1;
     }
+    candidateSeconds = region.stageSeconds;
     this->IntensityRangeUsed[0] = lower = region.lower;
     this->IntensityRangeUsed[1] = upper = region.upper;
     if (!region.ok)
@@ -390,6 +392,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     this->DownsampleFactorUsed = factorUsed;
     vtouch::addRangeFieldData(
       output->GetFieldData(), lower, upper, this->AutomaticIntensityRange, std::string());
+    vtouch::addStageSeconds(output->GetFieldData(), candidateSeconds);
   }
   catch (const itk::ProcessAborted&)
   {

@@ -15,6 +15,7 @@
 #include "vtkStringArray.h"
 #include "vtkType.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -183,6 +184,23 @@ inline void addRangeFieldData(vtkFieldData* fd,
   text->SetName("ExtractionMessage");
   text->InsertNextValue(message);
   fd->AddArray(text);
+}
+
+/// One field array per stage of the candidate region, "CandidateRangeSeconds",
+/// "CandidateGrowSeconds", "CandidateDepthSeconds", "CandidateTubularitySeconds",
+/// "CandidateNecksSeconds" (wall-clock seconds; the stages that ran).
+inline void addStageSeconds(vtkFieldData* fd,
+  const std::vector<std::pair<std::string, double>>& stageSeconds)
+{
+  for (const auto& [stage, seconds] : stageSeconds)
+  {
+    vtkNew<vtkDoubleArray> a;
+    std::string name = stage;
+    name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
+    a->SetName(("Candidate" + name + "Seconds").c_str());
+    a->InsertNextValue(seconds);
+    fd->AddArray(a);
+  }
 }
 
 } // namespace vtouch
