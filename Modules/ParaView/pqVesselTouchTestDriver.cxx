@@ -432,6 +432,7 @@ QJsonObject pqVesselTouchTestDriver::state() const
   sessionState.insert("period_error_max_us", status.loop.periodErrorMax_us);
   sessionState.insert("period_error_p99_us", status.loop.periodErrorP99_us);
   sessionState.insert("tracing", status.loop.tracing);
+  sessionState.insert("realtime_scheduling", status.loop.realtimeScheduling);
   sessionState.insert("skeleton_paths", status.skeletonPaths);
   sessionState.insert(
     "agent_force_N", QJsonArray{ status.agentForce_N[0], status.agentForce_N[1] });

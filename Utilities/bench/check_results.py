@@ -43,6 +43,9 @@ REQUIRED += (["centerline.raw.%s" % m for m in RAW_MEASURES]
              + ["centerline.raw.skimage.%s" % m for m in RAW_MEASURES]
              + ["centerline.raw.vesselness_whole_volume_s", "centerline.raw.cta_aorta.time_s",
                 "centerline.raw.automatic_range"])
+# The haptic loop while the camera is dragged in the real GUI (issue 20 item 6).
+REQUIRED += ["gui.%s.%s" % (phase, what) for phase in ("idle", "drag")
+             for what in ("max_period_error_us", "p99_period_error_us", "overruns", "ticks")]
 STRINGS = ("meta.commit", "meta.machine")
 
 

@@ -3,7 +3,7 @@
 plus the raw data of each section (<out>/raw/*.json) for the charts. Called by Utilities/bench.sh.
 
     /usr/bin/python3 Utilities/bench/run_bench.py --build BUILD --out OUT [--quick]
-        [--only centerline rawcenterline haptic force stability render]
+        [--only centerline rawcenterline haptic force stability render gui]
 
 Sections (each in its own processes; a failed section is reported and its keys stay missing, so
 check_results.py fails):
@@ -19,6 +19,8 @@ check_results.py fails):
   force       vesseltouch-force-sweep (force error against loop rate, tick cost).
   stability   vesseltouch-stability-map (coupler k_c, LDGF lambda, force interpolation).
   render      Testing/Benchmarks/agent_framerate.py under pvpython and Xvfb.
+  gui         Testing/ParaView/gui/bench_camera_drag.py: the haptic loop's period error while the
+              camera is dragged in the real ParaView GUI under Xvfb, against an idle phase.
 --quick: smaller volumes, fewer points and shorter runs; every key is still written (the
 centerline.helix384/tree384 keys then come from the largest quick size) and meta.quick is 1.
 """
@@ -27,6 +29,7 @@ import json
 import math
 import os
 import platform
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -41,7 +44,7 @@ sys.path.insert(0, os.path.join(ROOT, "Utilities"))
 sys.path.insert(0, HERE)
 import skeleton_benchmark as sb  # noqa: E402  (accuracy, VTP reader, aorta frame, skimage child)
 
-SECTIONS = ("centerline", "rawcenterline", "haptic", "force", "stability", "render")
+SECTIONS = ("centerline", "rawcenterline", "haptic", "force", "stability", "render", "gui")
 
 
 def log(*words):
@@ -312,6 +315,23 @@ def section_render(build, quick, tmp):
     log("render:\n" + text.rstrip())
     data = json.load(open(out))
     data["render.sizes"] = sizes
+    return {k: v for k, v in data.items() if isinstance(v, (int, float))}, data
+
+
+def section_gui(build, quick, tmp):
+    """The haptic loop while the user drags the camera in the real ParaView GUI (issue 20)."""
+    out = os.path.join(tmp, "gui_drag.json")
+    env = dict(os.environ)
+    env.update({"VESSELTOUCH_PARAVIEW": shutil.which("paraview") or "paraview",
+                "VESSELTOUCH_PLUGIN_DIR": exe(build, "lib", "paraview-5.11", "plugins",
+                                              "VesselTouch"),
+                "VESSELTOUCH_BINARY_DIR": os.path.join(tmp, "gui")})
+    cmd = [os.path.join(ROOT, "Testing", "Utilities", "vtouch-xvfb-run"), "/usr/bin/python3",
+           os.path.join(ROOT, "Testing", "ParaView", "gui", "bench_camera_drag.py"),
+           "--json", out, "--seconds", "2" if quick else "6"]
+    text = subprocess.run(cmd, check=True, capture_output=True, text=True, env=env).stdout
+    log("gui camera drag:\n" + text.rstrip())
+    data = json.load(open(out))
     return {k: v for k, v in data.items() if isinstance(v, (int, float))}, data
 
 
