@@ -50,7 +50,7 @@ public:
     /// tube of radius r responds most near sigma = r / sqrt(2)... r (Frangi et al. 1998, §2).
     double windowLow = 0.4;
     double windowHigh = 1.2;
-    /// Tiles on two threads (large regions only: 8 tiles or more).
+    /// Tiles on two threads (large regions only: 32 tiles or more on one grid).
     bool threads = true;
   };
   struct Result
@@ -307,7 +307,7 @@ RestrictedTubularity::Result RestrictedTubularity::compute(const VolumeView<T>& 
       }
     }
     // Tiles on two threads for large regions (each site belongs to one tile: no shared writes).
-    if (p.threads && work.size() >= 8)
+    if (p.threads && work.size() >= 32)
     {
       std::uint64_t second = 0;
       std::thread helper(
