@@ -65,7 +65,7 @@ def draw(path, mip, panels, title):
         ax.set_yticks([])
         ax.legend(loc="upper right", fontsize=7, markerscale=4, framealpha=0.6)
     fig.suptitle("\n".join(textwrap.wrap(title, 48 * len(panels))), fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 0.92))
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
