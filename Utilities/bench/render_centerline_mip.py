@@ -5,8 +5,10 @@
     /usr/bin/python3 Utilities/bench/render_centerline_mip.py --build BUILD [--out Docs/centerlines]
         [--cases phantom cta]
 
-phantom: the RawAngiogram VesselPhantom, 256^3, seed 1, Gaussian noise 20 (-> raw_phantom.png);
-cta:     the shared raw CTA vmtk-aorta/aorta.mha seeded on VMTK's reference (-> raw_cta_aorta.png).
+phantom: the RawAngiogram VesselPhantom, 256^3, seed 1, Gaussian noise 20
+         (-> bench_raw_phantom_vs_skimage.png);
+cta:     the shared raw CTA vmtk-aorta/aorta.mha seeded on VMTK's reference
+         (-> bench_raw_cta_aorta_vs_skimage.png).
 Each picture: the MIP along z, and over it the extraction (red; on the phantom, yellow where a
 point is more than 1.5 voxels outside every true vessel, and blue where the true axis is not
 covered: the misses; on the CTA, VMTK's reference in green).
@@ -31,8 +33,8 @@ CASES = {
     "phantom": ({"tag": "phantom", "phantom": {"Dimensions": [256, 256, 256], "Seed": 1,
                                                "NoiseStandardDeviation": 20,
                                                "AngiogramSegments": 200}},
-                "raw_phantom.png"),
-    "cta": (None, "raw_cta_aorta.png"),
+                "bench_raw_phantom_vs_skimage.png"),
+    "cta": (None, "bench_raw_cta_aorta_vs_skimage.png"),
 }
 
 
