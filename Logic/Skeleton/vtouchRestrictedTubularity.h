@@ -28,7 +28,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <thread>
 #include <vector>
 
 namespace vtouch
@@ -50,8 +49,6 @@ public:
     /// tube of radius r responds most near sigma = r / sqrt(2)... r (Frangi et al. 1998, §2).
     double windowLow = 0.4;
     double windowHigh = 1.2;
-    /// Tiles on two threads (large regions only: 32 tiles or more on one grid).
-    bool threads = true;
   };
   struct Result
   {
@@ -239,7 +236,6 @@ RestrictedTubularity::Result RestrictedTubularity::compute(const VolumeView<T>& 
         smooth->SetInput(image);
         smooth->SetSigma(sc[s]);
         smooth->SetNormalizeAcrossScale(false);
-        smooth->SetNumberOfWorkUnits(1);
         smooth->Update();
         computed += static_cast<std::uint64_t>(box.GetNumberOfPixels());
         const float* g = smooth->GetOutput()->GetBufferPointer();
@@ -306,31 +302,12 @@ RestrictedTubularity::Result RestrictedTubularity::compute(const VolumeView<T>& 
         work.push_back(tile);
       }
     }
-    // Tiles on two threads for large regions (each site belongs to one tile: no shared writes).
-    if (p.threads && work.size() >= 32)
+    // One tile after another; ITK smooths each tile on its own thread pool. (Tiles on two
+    // threads of our own, each with a one-work-unit ITK filter, lost tiles' results now and then
+    // on large trees: not done.)
+    for (std::size_t tile : work)
     {
-      std::uint64_t second = 0;
-      std::thread helper(
-        [&]
-        {
-          for (std::size_t w = 1; w < work.size(); w += 2)
-          {
-            second += runTile(work[w]);
-          }
-        });
-      for (std::size_t w = 0; w < work.size(); w += 2)
-      {
-        result.hessianVoxels += runTile(work[w]);
-      }
-      helper.join();
-      result.hessianVoxels += second;
-    }
-    else
-    {
-      for (std::size_t tile : work)
-      {
-        result.hessianVoxels += runTile(tile);
-      }
+      result.hessianVoxels += runTile(tile);
     }
     first = last;
   }
