@@ -109,15 +109,21 @@ void qVesselTouchDeviceWidgetPrivate::showCapabilities(bool known)
 
 void qVesselTouchDeviceWidgetPrivate::showKind()
 {
+  QString kind;
   for (const qVesselTouchDeviceEntry& entry : this->Devices)
   {
     if (entry.id == this->CurrentId)
     {
-      this->Ui.kindValue->setText(entry.kind.isEmpty() ? QStringLiteral("-") : entry.kind);
-      return;
+      kind = entry.kind;
+      break;
     }
   }
-  this->Ui.kindValue->setText(QStringLiteral("-"));
+  this->Ui.kindValue->setText(kind.isEmpty() ? QStringLiteral("-") : kind);
+  // The raw axis calibration and the reported capabilities belong to a hardware device; for the
+  // mouse, the simulated handle or a replay they mean nothing and only take room.
+  const bool hardware = kind == QLatin1String("hid");
+  this->Ui.capabilitiesGroup->setVisible(hardware);
+  this->Ui.calibrationGroup->setVisible(hardware);
 }
 
 qVesselTouchDeviceWidget::qVesselTouchDeviceWidget(QWidget* parent)

@@ -221,3 +221,10 @@ qVesselTouchForceZonesPlot* qVesselTouchForceZonesWidget::plot() const
   Q_D(const qVesselTouchForceZonesWidget);
   return d->Ui.zonesPlot;
 }
+
+void qVesselTouchForceZonesWidget::setGainEditable(bool editable)
+{
+  Q_D(qVesselTouchForceZonesWidget);
+  d->Ui.gainLabel->setVisible(editable);
+  d->Ui.gainSpinBox->setVisible(editable);
+}

@@ -46,6 +46,9 @@ public:
   double livePressure() const;
   /// k(livePressure) in newtons, 0 when no live pressure is shown.
   double liveGain_N() const;
+  /// Shows (default) or hides the gain's spin box: a host that edits k elsewhere (the force law's
+  /// gain) hides it, so one value has one field; the plot still shows k.
+  void setGainEditable(bool editable);
 
   /// Smallest distance kept between the two thresholds, normalized pressure. 0.01.
   static constexpr double kMinimumGap = 0.01;

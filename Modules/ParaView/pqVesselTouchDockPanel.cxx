@@ -20,6 +20,7 @@
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
+#include "pqCoreUtilities.h"
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
 #include "pqRenderView.h"
@@ -38,9 +39,12 @@
 #include "vtkVesselTouchVersion.h"
 
 #include <QCloseEvent>
+#include <QCoreApplication>
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QLabel>
+#include <QMainWindow>
 #include <QScrollArea>
 #include <QSignalBlocker>
 #include <QTimer>
@@ -52,6 +56,27 @@ namespace
 {
 /// Status refresh period while a session exists, ms (~10 Hz).
 constexpr int kStatusPeriod_ms = 100;
+/// The panel's width when it first shows, pixels.
+constexpr int kPanelWidth_px = 450;
+
+/// The "Help & Acknowledgement" section: the workflow in a few lines and the papers VesselTouch
+/// implements.
+QString helpText()
+{
+  return QCoreApplication::translate("pqVesselTouchDockPanel",
+    "<p><b>Workflow.</b> Open a 3D angiogram (CTA, TOF-MRA), press <i>MIP</i> on the VesselTouch "
+    "toolbar, <i>Pick seed</i> and click a vessel, <i>Extract</i>. Choose a device (the mouse "
+    "works: <i>Trace with mouse</i>), <i>Start</i>, and feel the vessels: the agent (the cone) "
+    "follows a vessel when you move along it; a click returns to exploring. Ctrl + left drag "
+    "rotates the view while tracing. See Docs/USING.md.</p>"
+    "<p><b>Acknowledgement.</b> VesselTouch implements:<br>"
+    "D. Yi, V. Hayward, <i>Augmenting Computer Graphics with Haptics for the Visualization of "
+    "Vessel Networks</i> (Q-skeleton, tracing, LDGF, force zones, haptic zoom);<br>"
+    "M. Ikits, J. D. Brederson, C. D. Hansen, C. R. Johnson, <i>A Constraint-Based Technique "
+    "for Haptic Volume Exploration</i> (constraint proxy);<br>"
+    "V. Hayward, D. Yi, <i>Change of Height: An Approach to the Haptic Display of Shape and "
+    "Texture Without Surface Normal</i> (change of height).</p>");
+}
 } // namespace
 
 class pqVesselTouchDockPanel::pqInternals
@@ -129,9 +154,38 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
   in.Ui.infoWidget->setVersion("hidapi", vtkVesselTouchVersion::GetHIDAPIVersion());
   in.Ui.stopButton->setEnabled(false);
 
+  // One value, one field: the zones plot shows the force law's gain k, edited in the law.
+  in.Ui.zonesWidget->setGainEditable(false);
+  in.Ui.advancedGroup->setCollapsed(true);
+  in.Ui.helpGroup->setCollapsed(true);
+  in.Ui.helpText->setText(helpText());
+  QObject::connect(in.Ui.resetDefaultsButton,
+    &QPushButton::clicked,
+    this,
+    [this]()
+    {
+      pqInternals& internals = *this->Internals;
+      pqVesselTouchPanelValues defaults;
+      defaults.deviceId = internals.Ui.deviceWidget->currentDeviceId(); // not a force setting
+      internals.toWidgets(defaults, defaults.activeGain_N(1.0));
+      this->onWidgetsEdited();
+    });
+
   auto* scroll = new QScrollArea(this);
   scroll->setObjectName("VesselTouchScroll");
   scroll->setWidgetResizable(true);
+  // Wrapped labels follow the panel's width instead of setting it.
+  for (QLabel* label : content->findChildren<QLabel*>())
+  {
+    if (label->wordWrap())
+    {
+      QSizePolicy policy = label->sizePolicy();
+      policy.setHorizontalPolicy(QSizePolicy::Ignored);
+      label->setSizePolicy(policy);
+    }
+  }
+  // The panel fits its dock's width (no sideways scrolling, no cut-off left edge).
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   scroll->setWidget(content);
   this->setWidget(scroll);
 
@@ -208,14 +262,14 @@ void pqVesselTouchDockPanel::setUpDevices()
   vtouch::HidapiTransport hid;
   for (const vtouch::HidDeviceInfo& info : hid.enumerate())
   {
-    const bool joystickLike = info.usagePage == 0x0F || info.usagePage == 0 ||
+    const bool joystickLike =
+      info.usagePage == 0x0F || info.usagePage == 0 ||
       (info.usagePage == 0x01 && (info.usage == 0x04 || info.usage == 0x05 || info.usage == 0x08));
     if (!joystickLike || info.path.empty())
     {
       continue;
     }
-    const QString name =
-      QString::fromStdString(info.manufacturer + " " + info.product).trimmed();
+    const QString name = QString::fromStdString(info.manufacturer + " " + info.product).trimmed();
     devices.append({ QString("hid:%1").arg(QString::fromStdString(info.path)),
       tr("HID %1 (%2:%3)")
         .arg(name.isEmpty() ? QString::fromStdString(info.path) : name)
@@ -500,6 +554,11 @@ void pqVesselTouchDockPanel::revealOnce()
   }
   this->show();
   this->raise();
+  // A module panel's width, not its widest label's: the render view keeps the room.
+  if (auto* window = qobject_cast<QMainWindow*>(pqCoreUtilities::mainWidget()))
+  {
+    window->resizeDocks({ this }, { kPanelWidth_px }, Qt::Horizontal);
+  }
 }
 
 void pqVesselTouchDockPanel::showEvent(QShowEvent* event)

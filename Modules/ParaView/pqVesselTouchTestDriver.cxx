@@ -60,6 +60,7 @@ QJsonObject describe(const QWidget* widget)
   entry.insert("visible", widget->isVisible());
   entry.insert("enabled", widget->isEnabled());
   entry.insert("rect", screenRect(widget));
+  entry.insert("minimum_width", widget->minimumSizeHint().width());
   if (!widget->toolTip().isEmpty())
   {
     entry.insert("tooltip", widget->toolTip());
