@@ -23,7 +23,10 @@ Measures: Utilities/bench/centerline_metrics.py. Keys (flat, units in the names)
                                       where that keeps more than 5 % of the volume, i.e. split
                                       the tissue, Otsu again above it: otsu_upper_cases counts them)
   centerline.raw.case.<tag>.<m>, centerline.raw.skimage.case.<tag>.<m>   every case
-  centerline.raw.time_s               VesselCenterline's UpdatePipeline on the CTA-sized volume
+  centerline.raw.time_s               VesselCenterline's UpdatePipeline on the CTA-sized volume;
+                                      centerline.raw.tubularity_s and .stage_<stage>_s its
+                                      stages (the filter's Candidate<Stage>Seconds field data;
+                                      NaN when the filter does not report them)
   centerline.raw.skimage.time_s       Otsu + skeletonize_3d on it
   centerline.raw.vesselness_whole_volume_s  whole-volume multi-scale vesselness on it
   centerline.raw.automatic_range      1 when the filter chose the range itself, 0 when the Otsu
@@ -163,6 +166,13 @@ def run(build, quick, tmp, log):
             row["vc"], row["skimage"] = vc, sk
             if tag == "large":
                 results["centerline.raw.time_s"] = row["time_s"]
+                # The filter's stage times (field data Candidate<Stage>Seconds), when it has them.
+                for k, v in record.items():
+                    if k.startswith("field.Candidate") and k.endswith("Seconds") and v:
+                        stage = k[len("field.Candidate"):-len("Seconds")].lower()
+                        results["centerline.raw.stage_%s_s" % stage] = v[0]
+                results["centerline.raw.tubularity_s"] = record.get(
+                    "field.CandidateTubularitySeconds", [math.nan])[0]
                 results["centerline.raw.skimage.time_s"] = sk_seconds
                 results["centerline.raw.large.voxels"] = float(np.prod(record["dimensions"]))
                 for k in ("precision", "recall_r0.5_up", "recall_r1_up", "mean_dist_vox",
