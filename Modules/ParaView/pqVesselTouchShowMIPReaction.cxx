@@ -16,12 +16,15 @@
 #include "vtkPVDataSetAttributesInformation.h"
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
+#include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionProxy.h"
 #include "vtkSMViewProxy.h"
 
 #include <QtDebug>
+
+#include <algorithm>
 
 pqVesselTouchShowMIPReaction::pqVesselTouchShowMIPReaction(QAction* parentObject)
   : Superclass(parentObject)
@@ -83,6 +86,37 @@ void pqVesselTouchShowMIPReaction::onTriggered()
   showAsMIP(pqActiveObjects::instance().activeSource(), pqActiveObjects::instance().activeView());
 }
 
+void pqVesselTouchShowMIPReaction::setRadiologicalCamera(pqPipelineSource* source,
+  vtkSMProxy* viewProxy)
+{
+  // Only patient images (VesselTouch's readers, OutputFrame LPS = 0 or RAS = 1) have a patient
+  // orientation; a phantom keeps ParaView's default view.
+  vtkSMProperty* frame = source->getProxy()->GetProperty("OutputFrame");
+  if (!frame)
+  {
+    return;
+  }
+  const bool ras = vtkSMPropertyHelper(frame).GetAsInt() == 1;
+  // The radiological axial view: seen from the feet (looking toward +z, superior), anterior up,
+  // the patient's left on the screen's right. LPS: +x is left, so up = -y (anterior); RAS: +x is
+  // right, up = +y. The camera's right (direction x up) is then +x (LPS) or -x (RAS).
+  vtkPVDataInformation* info = source->getOutputPort(0)->getDataInformation();
+  double bounds[6];
+  info->GetBounds(bounds);
+  double centre[3];
+  double size = 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    centre[i] = 0.5 * (bounds[2 * i] + bounds[2 * i + 1]);
+    size = std::max(size, bounds[2 * i + 1] - bounds[2 * i]);
+  }
+  const double position[3] = { centre[0], centre[1], centre[2] - 3.0 * std::max(size, 1.0) };
+  const double up[3] = { 0.0, ras ? 1.0 : -1.0, 0.0 };
+  vtkSMPropertyHelper(viewProxy, "CameraFocalPoint").Set(centre, 3);
+  vtkSMPropertyHelper(viewProxy, "CameraPosition").Set(position, 3);
+  vtkSMPropertyHelper(viewProxy, "CameraViewUp").Set(up, 3);
+}
+
 bool pqVesselTouchShowMIPReaction::showAsMIP(pqPipelineSource* source, pqView* view)
 {
   if (!source || !qobject_cast<pqRenderView*>(view))
@@ -100,6 +134,10 @@ bool pqVesselTouchShowMIPReaction::showAsMIP(pqPipelineSource* source, pqView* v
   vtkPVDataInformation* info = source->getOutputPort(0)->getDataInformation();
   vtkPVArrayInformation* scalars =
     info->GetPointDataInformation()->GetAttributeInformation(vtkDataSetAttributes::SCALARS);
+  // Copies: showing and colouring update the pipeline, which replaces the data information.
+  const QByteArray scalarName(scalars->GetName());
+  double range[2] = { 0.0, 1.0 };
+  scalars->GetComponentRange(0, range);
 
   vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
   vtkSMProxy* repr = controller->Show(source->getSourceProxy(), 0, view->getViewProxy());
@@ -111,14 +149,12 @@ bool pqVesselTouchShowMIPReaction::showAsMIP(pqPipelineSource* source, pqView* v
   vtkSMRepresentationProxy::SetRepresentationType(repr, "Volume");
   // ParaView names only Composite/Isosurface/Slice; maximum intensity is blend mode 1.
   vtkSMPropertyHelper(repr, "BlendMode").Set(1);
-  vtkSMPVRepresentationProxy::SetScalarColoring(repr, scalars->GetName(), vtkDataObject::POINT);
+  vtkSMPVRepresentationProxy::SetScalarColoring(repr, scalarName.constData(), vtkDataObject::POINT);
   vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(repr, false, true);
   vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy();
   if (lut)
   {
     vtkSMTransferFunctionProxy::ApplyPreset(lut, "Grayscale", false);
-    double range[2] = { 0.0, 1.0 };
-    scalars->GetComponentRange(0, range);
     vtkSMProxy* opacity = vtkSMPropertyHelper(lut, "ScalarOpacityFunction", true).GetAsProxy();
     if (opacity)
     {
@@ -130,6 +166,13 @@ bool pqVesselTouchShowMIPReaction::showAsMIP(pqPipelineSource* source, pqView* v
     lut->UpdateVTKObjects();
   }
   repr->UpdateVTKObjects();
+  // A MIP is read on black, from the first frame (not only once tracing starts).
+  vtkSMProxy* viewProxy = view->getProxy();
+  const double black[3] = { 0.0, 0.0, 0.0 };
+  vtkSMPropertyHelper(viewProxy, "UseColorPaletteForBackground", /*quiet=*/true).Set(0);
+  vtkSMPropertyHelper(viewProxy, "Background").Set(black, 3);
+  setRadiologicalCamera(source, viewProxy);
+  viewProxy->UpdateVTKObjects();
   view->resetDisplay();
   view->render();
   return true;

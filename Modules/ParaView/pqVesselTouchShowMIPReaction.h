@@ -1,5 +1,6 @@
 // "Show as MIP": shows the active image in the active render view as a maximum-intensity
-// projection (Volume representation, BlendMode 1, grey transfer function). Disabled, with the
+// projection (Volume representation, BlendMode 1, grey transfer function) on a black background;
+// a patient image (VesselTouch's readers) opens in the radiological axial view. Disabled, with the
 // reason in its tooltip, unless the active source is a 3D volume (pqVesselTouchVolumeCheck).
 #ifndef pqVesselTouchShowMIPReaction_h
 #define pqVesselTouchShowMIPReaction_h
@@ -10,6 +11,7 @@
 
 class pqPipelineSource;
 class pqView;
+class vtkSMProxy;
 
 class pqVesselTouchShowMIPReaction : public pqReaction
 {
@@ -30,6 +32,8 @@ protected:
   void onTriggered() override;
 
 private:
+  /// Patient images open in the radiological axial view (seen from the feet, anterior up).
+  static void setRadiologicalCamera(pqPipelineSource* source, vtkSMProxy* viewProxy);
   /// The active source whose data updates re-check the action (a 2D image disables it).
   QPointer<pqPipelineSource> Watched;
   Q_DISABLE_COPY(pqVesselTouchShowMIPReaction)

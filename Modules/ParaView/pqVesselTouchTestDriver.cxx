@@ -417,6 +417,8 @@ QJsonObject pqVesselTouchTestDriver::state() const
     const double* up = camera->GetViewUp();
     state.insert("camera_position", QJsonArray{ position[0], position[1], position[2] });
     state.insert("camera_view_up", QJsonArray{ up[0], up[1], up[2] });
+    const double* focal = camera->GetFocalPoint();
+    state.insert("camera_focal_point", QJsonArray{ focal[0], focal[1], focal[2] });
   }
 
   pqPipelineSource* sessionSource = model->findItem<pqPipelineSource*>("VesselTouchSession");

@@ -47,8 +47,28 @@ def ShowAsMIP(source=None, view=None, port=0):
     pwf = simple.GetOpacityTransferFunction(name)
     pwf.Points = [lo, 0.0, 0.5, 0.0, hi, 1.0, 0.5, 0.0]
     pwf.RescaleTransferFunction(lo, hi)
+    # A MIP is read on black, from the first frame.
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0.0, 0.0, 0.0]
+    _radiological_camera(source, port, view)
     view.ResetCamera()
     return rep
+
+
+def _radiological_camera(source, port, view):
+    """Patient images (VesselTouch's readers: OutputFrame LPS = 0, RAS = 1) open in the
+    radiological axial view: seen from the feet (toward +z, superior), anterior up, the patient's
+    left on the screen's right. A phantom keeps ParaView's default view."""
+    prop = source.SMProxy.GetProperty("OutputFrame") if hasattr(source, "SMProxy") else None
+    if prop is None:
+        return
+    ras = prop.GetElement(0) == 1
+    bounds = source.GetDataInformation(port).GetBounds()
+    centre = [0.5 * (bounds[2 * i] + bounds[2 * i + 1]) for i in range(3)]
+    size = max(max(bounds[2 * i + 1] - bounds[2 * i] for i in range(3)), 1.0)
+    view.CameraFocalPoint = centre
+    view.CameraPosition = [centre[0], centre[1], centre[2] - 3.0 * size]
+    view.CameraViewUp = [0.0, 1.0 if ras else -1.0, 0.0]
 
 
 def BlendMode(rep):
