@@ -1,5 +1,6 @@
 """Scene of the driven GUI tests (gui_driver.py), run by the real ParaView as
 ``paraview --script=...``. VESSELTOUCH_SCENE chooses it:
+  empty     nothing (ParaView as the user finds it)
   phantom   a VesselPhantom tree ("Phantom") shown as a MIP, active (the clinician's start)
   volume+2d the phantom, plus a 2D image ("Flat", a 64 x 64 x 1 wavelet) and, if
             VESSELTOUCH_SCENE_PNG names a file, that PNG opened by ParaView's reader ("Png")
@@ -19,6 +20,8 @@ def main():
 
     scene = os.environ.get("VESSELTOUCH_SCENE", "phantom")
     view = simple.GetActiveViewOrCreate("RenderView")
+    if scene == "empty":
+        return
     phantom = simple.VesselPhantom(registrationName="Phantom", Shape="Tree",
                                    Dimensions=[64, 64, 64])
     vesseltouch.ShowAsMIP(phantom, view)
