@@ -110,10 +110,24 @@ check.true(played_tracing.mean() > 0.85, "the replayed trajectory traces (%.2f)"
 lead = numpy.abs(played["point"][:800] - log["point"][:800]).max()
 check.true(int(lead) <= 12, "the replay follows the original trace up to the first fold (%d)"
            % lead)
-drift = numpy.abs(played["hand"] - log["hand"][:len(played["hand"])]).max(axis=1)
+# The replayed handle is held on the recorded one by the hand's grip (HandStiffness), against the
+# device force: it departs from its script by the grip's compliance |F|/k_hand, up to twice that
+# while the lightly damped grip rings after a force step (a second-order step response peaks below
+# 2x its static value), plus 0.1 mm of lag. A fixed 0.5 mm held only while forces stayed small:
+# with lambda sized from the device (Yi & Hayward 4.1) the replay now follows the original trace
+# to the helix's end, where the agent stops on a steep last segment and the replay's 1.22 N holds
+# the handle 0.41 mm (peak 0.72 mm) off the recorded one, exactly as the recorded hand was held.
+grip_mm_per_N = 1e3 / s.proxy.GetProperty("HandStiffness").GetData()
+deviation = numpy.linalg.norm(played["hand"] - log["hand"][:len(played["hand"])], axis=1)
+played_force = numpy.linalg.norm(played["force"], axis=1)
+recent_force = numpy.array([played_force[max(0, i - 100):i + 1].max()
+                            for i in range(len(played_force))])
+allowed = 0.1 + 2.0 * recent_force * grip_mm_per_N
 # (the recorded handle lagged its hand during the 0.3 s approach; replayed, it lags once more)
-check.true(float(drift[500:].max()) < 0.5, "the simulated hand follows the trajectory (%.3f mm)"
-           % drift[500:].max())
+worst = int(numpy.argmax(deviation[500:] / allowed[500:])) + 500
+check.true(bool((deviation[500:] <= allowed[500:]).all()),
+           "the simulated hand follows the trajectory within the grip's compliance (%.3f mm, "
+           "allowed %.3f mm at tick %d)" % (deviation[worst], allowed[worst], worst))
 
 # Explicit matrices from a vtkCamera (row-major, transposed by the session) give the same run as
 # the camera parameters.
