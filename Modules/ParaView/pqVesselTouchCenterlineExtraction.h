@@ -55,6 +55,8 @@ public:
   void showInView(pqPipelineSource* centerline, pqView* view, bool visible);
   /// Whether the overlay draws centerlines now.
   bool isShowingCenterline() const;
+  /// The overlay, which also marks the seed.
+  pqVesselTouchCenterlineOverlay* overlay() const { return this->Overlay; }
 
 Q_SIGNALS:
   /// Progress of the running filter, percent [0, 100].

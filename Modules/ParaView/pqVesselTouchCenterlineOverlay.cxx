@@ -20,6 +20,8 @@ namespace
 /// Orange: far from any grey of the MIP, from the agent's blue cone and its green force arrow.
 constexpr double kColour[3] = { 1.0, 0.55, 0.0 };
 constexpr float kLineWidth_px = 3.0F;
+/// The seed's marker: cyan, apart from the centerlines' orange and the grey MIP.
+constexpr double kSeedColour[3] = { 0.0, 0.9, 1.0 };
 } // namespace
 
 pqVesselTouchCenterlineOverlay::pqVesselTouchCenterlineOverlay(QObject* parentObject)
@@ -37,6 +39,14 @@ pqVesselTouchCenterlineOverlay::pqVesselTouchCenterlineOverlay(QObject* parentOb
   property->SetRenderLinesAsTubes(true);
   property->SetLighting(false);
   this->Overlay->AddActor(this->Actor);
+  this->SeedSphere->SetThetaResolution(24);
+  this->SeedSphere->SetPhiResolution(12);
+  this->SeedMapper->SetInputConnection(this->SeedSphere->GetOutputPort());
+  this->SeedActor->SetMapper(this->SeedMapper);
+  this->SeedActor->GetProperty()->SetColor(kSeedColour[0], kSeedColour[1], kSeedColour[2]);
+  this->SeedActor->GetProperty()->SetLighting(false); // one flat colour, like the lines
+  this->SeedActor->SetVisibility(false);
+  this->Overlay->AddActor(this->SeedActor);
 }
 
 pqVesselTouchCenterlineOverlay::~pqVesselTouchCenterlineOverlay()
@@ -135,4 +145,23 @@ void pqVesselTouchCenterlineOverlay::followRepresentation()
 bool pqVesselTouchCenterlineOverlay::isShowing() const
 {
   return this->Window && this->Actor->GetVisibility() && this->Lines->GetNumberOfCells() > 0;
+}
+
+void pqVesselTouchCenterlineOverlay::showSeed(pqView* view, const double* seed_mm, double radius_mm)
+{
+  if (seed_mm)
+  {
+    this->SeedSphere->SetCenter(seed_mm[0], seed_mm[1], seed_mm[2]);
+    this->SeedSphere->SetRadius(radius_mm);
+  }
+  this->SeedActor->SetVisibility(seed_mm != nullptr);
+  if (view && this->attach(view))
+  {
+    view->render();
+  }
+}
+
+bool pqVesselTouchCenterlineOverlay::isShowingSeed() const
+{
+  return this->Window && this->SeedActor->GetVisibility();
 }

@@ -15,6 +15,7 @@
 #include <QPointer>
 
 #include "vtkNew.h"
+#include "vtkSphereSource.h"
 #include "vtkWeakPointer.h"
 
 class pqPipelineSource;
@@ -24,6 +25,7 @@ class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkRenderWindow;
 class vtkRenderer;
+class vtkSphereSource;
 
 class pqVesselTouchCenterlineOverlay : public QObject
 {
@@ -37,6 +39,10 @@ public:
   void show(pqPipelineSource* centerline, pqView* view, bool visible);
   /// Whether centerlines are drawn now (attached, visible and not empty).
   bool isShowing() const;
+  /// The seed's marker (a sphere of `radius_mm` at `seed_mm`, world mm) over `view`, or none
+  /// (`seed_mm` null). Renders the view.
+  void showSeed(pqView* view, const double* seed_mm, double radius_mm);
+  bool isShowingSeed() const;
 
 private Q_SLOTS:
   void followRepresentation();
@@ -49,6 +55,9 @@ private:
   vtkNew<vtkPolyData> Lines;
   vtkNew<vtkPolyDataMapper> Mapper;
   vtkNew<vtkActor> Actor;
+  vtkNew<vtkSphereSource> SeedSphere;
+  vtkNew<vtkPolyDataMapper> SeedMapper;
+  vtkNew<vtkActor> SeedActor;
   vtkWeakPointer<vtkRenderWindow> Window;
   QPointer<pqView> View;
   QPointer<pqPipelineSource> Centerline;

@@ -2,6 +2,7 @@
 #include "ui_pqVesselTouchDockPanel.h"
 
 #include "pqVesselTouchCenterlineExtraction.h"
+#include "pqVesselTouchCenterlineOverlay.h"
 #include "pqVesselTouchSeedPicker.h"
 #include "pqVesselTouchVolumeCheck.h"
 #include "pqVesselTouchVolumeChooser.h"
@@ -24,6 +25,7 @@
 #include <QSignalBlocker>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace
@@ -174,6 +176,10 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
     });
   QObject::connect(
     this->Ui.extractButton, &QPushButton::clicked, this, &pqVesselTouchCenterlineWorkflow::extract);
+  QObject::connect(this->Ui.clearSeedButton,
+    &QToolButton::clicked,
+    this,
+    &pqVesselTouchCenterlineWorkflow::clearSeed);
   QObject::connect(this->Ui.automaticRange,
     &QCheckBox::toggled,
     this,
@@ -292,6 +298,19 @@ void pqVesselTouchCenterlineWorkflow::onSeedPicked(double x_mm,
                                 .arg(value));
   const QSignalBlocker blocker(this->Ui.pickSeedButton);
   this->Ui.pickSeedButton->setChecked(false);
+  this->Ui.clearSeedButton->setEnabled(true);
+  // The marker: a sphere of 1 % of the volume's diagonal (visible, smaller than a vessel).
+  double radius_mm = 1.0;
+  if (vtkPVDataInformation* data =
+        this->SeedVolume ? this->SeedVolume->getOutputPort(0)->getDataInformation() : nullptr)
+  {
+    const double* b = data->GetBounds();
+    radius_mm =
+      std::max(0.01 * std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+                                (b[5] - b[4]) * (b[5] - b[4])),
+        1e-3);
+  }
+  this->Extraction->overlay()->showSeed(activeRenderView(), this->Seed_mm, radius_mm);
   // The seed is on background when the voxels around the brightest one under the click (a
   // lumen, or a noise spike) are not brighter than the background by Rose's criterion, or when
   // the ray crossed only the volume's minimum (a zero-filled background).
@@ -321,6 +340,15 @@ void pqVesselTouchCenterlineWorkflow::onSeedPicked(double x_mm,
   {
     this->setExtractMessage(QString(), false);
   }
+}
+
+void pqVesselTouchCenterlineWorkflow::clearSeed()
+{
+  this->HasSeed = false;
+  this->SeedVolume = nullptr;
+  this->Ui.seedLabel->setText(tr("No seed"));
+  this->Ui.clearSeedButton->setEnabled(false);
+  this->Extraction->overlay()->showSeed(activeRenderView(), nullptr, 0.0);
 }
 
 void pqVesselTouchCenterlineWorkflow::setDataRange(pqPipelineSource* volume)
@@ -375,10 +403,7 @@ void pqVesselTouchCenterlineWorkflow::onVolumeChanged(pqPipelineSource* volume)
 {
   if (volume != this->SeedVolume || !volume)
   {
-    // A seed belongs to the volume it was picked in.
-    this->HasSeed = false;
-    this->SeedVolume = nullptr;
-    this->Ui.seedLabel->setText(tr("No seed"));
+    this->clearSeed(); // a seed belongs to the volume it was picked in
   }
   vtkPVDataInformation* data = volume ? volume->getOutputPort(0)->getDataInformation() : nullptr;
   if (volume && (!data || data->GetNumberOfPoints() <= 0))

@@ -50,6 +50,8 @@ public Q_SLOTS:
   bool pickSeedAt(const QPoint& position);
   /// Runs VesselCenterline at the seed; emits centerlineReady() or shows why not.
   void extract();
+  /// Forgets the seed and removes its marker from the view.
+  void clearSeed();
 
 Q_SIGNALS:
   /// Centerlines were extracted: `paths` polylines.

@@ -9,6 +9,7 @@ ParaView's reader. Checks (issue 20 items 4, 7, 8, 9):
 - a seed clicked on the brightest vessel in the view, then Extract: the centerlines appear in the
   view at once, in a colour that is not grey (the pixels of ParaView's own capture), the used
   intensity range is shown and lies inside the data's range, the progress bar is full;
+- the picked seed is marked in the view; Clear removes the seed and its marker;
 - Start then Stop: no agent cone left in the view;
 - a failing Extract (the range set above the seed's value, Automatic off): a message beside
   Extract, the progress bar back to 0, and no centerline pixels left in the view.
@@ -33,14 +34,22 @@ def coloured_pixels(png):
     return int(numpy.count_nonzero((r > 170) & (g > 80) & (g < 200) & (b < 90) & (r - g > 40)))
 
 
+def seed_pixels(png):
+    """The seed marker's cyan."""
+    rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int)
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    return int(numpy.count_nonzero((r < 60) & (g > 60) & (b > 60) & (numpy.abs(g - b) < 40)))
+
+
 def agent_pixels(png):
-    """Strongly coloured pixels that are not the centerlines' orange: the agent's cone and its
-    force arrow."""
+    """Strongly coloured pixels that are not the centerlines' orange or the seed's cyan: the
+    agent's cone and its force arrow."""
     rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int)
     r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
     orange = (r > 170) & (g > 80) & (g < 200) & (b < 90) & (r - g > 40)
+    cyan = (r < 60) & (g > 60) & (b > 60) & (numpy.abs(g - b) < 40)  # the seed's marker
     saturated = rgb.max(axis=2) - rgb.min(axis=2) > 80
-    return int(numpy.count_nonzero(saturated & ~orange))
+    return int(numpy.count_nonzero(saturated & ~orange & ~cyan))
 
 
 def brightest_and_darkest(png):
@@ -117,6 +126,9 @@ def body(gui, check):
     gui.wait_until(lambda s: not s["widgets"]["pickSeedButton"]["checked"], seconds=5)
     check("background" not in gui.widget("extractMessage").get("text", ""),
           "a seed on the vessel is not called background (%r)" % gui.widget("extractMessage"))
+    marked = gui.capture("seed_marker.png")
+    count = seed_pixels(marked) if marked else 0
+    check(count > 10, "the seed is marked in the view (%d pixels)" % count)
     gui.run("click", "extractButton")
     text = gui.widget("extractMessage").get("text", "")
     check("centerline path" in text, "Extract reports the paths beside it (%r)" % text)
@@ -156,6 +168,13 @@ def body(gui, check):
     failed = gui.capture("after_failed_extract.png")
     count = coloured_pixels(failed) if failed else -1
     check(count == 0, "no stale centerline left in the view after a failed Extract (%d)" % count)
+
+    # Clear forgets the seed and its marker.
+    gui.run("click", "clearSeedButton")
+    check(gui.widget("seedLabel").get("text") == "No seed", "Clear forgets the seed")
+    cleared = gui.capture("seed_cleared.png")
+    count = seed_pixels(cleared) if cleared else -1
+    check(count == 0, "no seed marker after Clear (%d pixels)" % count)
 
 
 def main():
