@@ -234,11 +234,22 @@ DeviceStatus HidPidDevice::open()
       info = candidate;
     }
   }
-  if (!this->HaveCalibration &&
-      !DeviceCalibration::findPreset(
-        this->PresetDirectory, info.vendorId, info.productId, this->Calibration))
+  const bool calibrated =
+    this->HaveCalibration ||
+    DeviceCalibration::findPreset(
+      this->PresetDirectory, info.vendorId, info.productId, this->Calibration);
+  const bool relative = this->Decoder.xField().isRelative();
+  if (!calibrated)
   {
     this->Calibration = DeviceCalibration{};
+    // No preset: when the descriptor gives both axes a physical length (HID 1.11, 6.2.2.7), the
+    // workspace is their physical extent, so that the device frame is in real millimetres.
+    const Vec2 physical =
+      hidPhysicalWorkspace_mm(this->Decoder.xField(), this->Decoder.yField(), this->Calibration);
+    if (!relative && physical.x > 0.0 && physical.y > 0.0)
+    {
+      this->Calibration.workspace_mm = physical;
+    }
   }
 
   DeviceCapabilities caps;
@@ -256,6 +267,16 @@ DeviceStatus HidPidDevice::open()
   caps.maxUpdateRate_Hz = this->Calibration.maxUpdateRate_Hz;
   caps.hasPressure = this->Decoder.hasPressure();
   caps.buttonCount = this->Decoder.buttonCount();
+  // Sets z_max of the change-of-height estimate (Hayward & Yi, App. A): the descriptor's physical
+  // resolution, else one count of the calibrated frame (Docs/HAPTICS.md).
+  caps.positionResolution_mm = this->Layout.hasPosition()
+                                 ? hidPositionResolution_mm(this->Decoder.xField(),
+                                     this->Decoder.yField(),
+                                     this->Calibration,
+                                     relative,
+                                     !calibrated,
+                                     &this->ResolutionSource)
+                                 : 0.0;
 
   this->InputBuffer.assign(
     std::max<std::size_t>(64, this->Descriptor.maxReportBytes(HidReportType::Input)), 0);

@@ -9,6 +9,7 @@
 #include "vtouchHidPidReports.h"
 #include "vtouchHidReportDescriptor.h"
 #include "vtouchHidTransport.h"
+#include "vtouchHidUnits.h"
 #include "vtouchVelocityEstimator.h"
 
 #include <array>
@@ -63,6 +64,8 @@ public:
   }
   /// Reports dropped by read() because they were malformed or of another kind.
   std::uint64_t ignoredInputReports() const { return this->IgnoredInputs; }
+  /// Where capabilities().positionResolution_mm came from (valid after open()).
+  HidResolutionSource resolutionSource() const { return this->ResolutionSource; }
 
 private:
   struct Effect
@@ -93,6 +96,7 @@ private:
   std::string PresetDirectory;
   bool HaveCalibration = false;
   DeviceCalibration Calibration;
+  HidResolutionSource ResolutionSource = HidResolutionSource::Calibration;
   DeviceCapabilities Capabilities;
   HidReportDescriptor Descriptor;
   HidPidLayout Layout;

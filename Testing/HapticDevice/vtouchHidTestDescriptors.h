@@ -224,5 +224,17 @@ inline const char* kHidSpecMouse =
   "05 01 09 02 A1 01 09 01 A1 00 05 09 19 01 29 03 15 00 25 01 95 03 75 01 81 02"
   " 95 01 75 05 81 01 05 01 09 30 09 31 15 81 25 7F 75 08 95 02 81 06 C0 C0";
 
+/// A pen digitizer with physical units: Microsoft's sample "Integrated Windows Pen TLC" report
+/// descriptor (Windows hardware documentation, "Sample report descriptors"; republished in
+/// MicrosoftDocs/windows-driver-docs), report ID 1. X: logical 0..21240 over physical 0..8250 at
+/// Unit 0x13 (English Linear, inch) and Unit Exponent -3, i.e. 8.250 in; Y: 0..15980 over
+/// 6.188 in (PUSH/POP around them); tip pressure 0..255, X/Y tilt. No PID reports.
+inline const char* kMicrosoftSamplePen =
+  "05 0D 09 02 A1 01 85 01 09 20 A1 00 09 42 09 44 09 3C 09 45 15 00 25 01 75 01 95 04 81 02"
+  " 95 01 81 03 09 32 81 02 95 02 81 03"
+  " 05 01 09 30 75 10 95 01 A4 55 0D 65 13 35 00 46 3A 20 26 F8 52 81 02"
+  " 09 31 46 2C 18 26 6C 3E 81 02 B4"
+  " 05 0D 09 30 26 FF 00 81 02 75 08 09 3D 15 81 25 7F 81 02 09 3E 15 81 25 7F 81 02 C0 C0";
+
 } // namespace test
 } // namespace vtouch
