@@ -77,9 +77,19 @@ double ConstraintProxyForceLaw::tickForce(double arc_mm) const
   {
     return 0.0;
   }
-  const double u = arc_mm - spacing * std::round(arc_mm / spacing); // to the nearest mark
-  const double x = u / w;
-  // A detent: pushes back before the mark, pulls on after it (peak A at |u| = w).
+  return this->detentForce(arc_mm - spacing * std::round(arc_mm / spacing)); // nearest mark
+}
+
+double ConstraintProxyForceLaw::detentForce(double offset_mm) const
+{
+  const double w = this->tickWidth_mm;
+  if (!(w > 0.0) || !std::isfinite(offset_mm))
+  {
+    return 0.0;
+  }
+  const double x = offset_mm / w;
+  // A detent: a potential well at the mark (draws the hand in from either side, peak A at
+  // |u| = w, negligible beyond ~4 w); conservative, so it never adds energy over a round trip.
   return -this->tickForce_N * x * std::exp(0.5 * (1.0 - x * x));
 }
 
@@ -149,13 +159,19 @@ Vec2 ConstraintProxyForceLaw::compute(const ForceInput& in, ForceRequest& reques
   this->LastNormalForce_N = std::fabs(spring.dot(nrm));
 
   Vec2 secondary;
-  if (this->tickSpacing_mm > 0.0)
+  if (this->tickSpacing_mm > 0.0 || this->tickAtBifurcations)
   {
     // Along increasing arc = along eta (toward increasing index).
     const double ne = in.agent.eta.norm();
     if (ne > 0.5)
     {
-      secondary = secondary + in.agent.eta * (this->tickForce(in.agentArc_mm) / ne);
+      double along_N = this->tickForce(in.agentArc_mm);
+      if (this->tickAtBifurcations)
+      {
+        along_N += this->detentForce(in.bifurcationOffset_mm);
+      }
+      // Scaled by k(P) like the coupler: the zero-force zone (and the idle gate) silence it.
+      secondary = secondary + in.agent.eta * (along_N * in.zoneFraction / ne);
     }
   }
   if (this->fieldForce)

@@ -33,8 +33,9 @@ namespace vtouch
 /// as Ikits do. k_c <= maxStiffness_N_per_m x (rate / 1 kHz), b_c <= maxStiffness_N_per_m x 1 ms.
 /// Secondary effects (Ikits §1, §3): friction in the constraint subspace (a friction point on t,
 /// Salisbury et al.: the tangent drag threshold grows by mu |F_n|), tick-mark texture (a detent
-/// every tickSpacing_mm of 3D arc: F_t = -A (u/w) exp((1 - (u/w)^2) / 2), u the signed arc
-/// distance to the nearest mark, w its half width), and a field force along the vessel (the
+/// every tickSpacing_mm of 3D arc and/or at every bifurcation of the traced path:
+/// F_t = -A (u/w) exp((1 - (u/w)^2) / 2), u the signed arc distance to the nearest mark, w its
+/// half width; a well the hand feels as a click), and a field force along the vessel (the
 /// depth slope, Yi & Hayward eq. 2, added to the coupler).
 class ConstraintProxyForceLaw final : public ForceLaw
 {
@@ -77,6 +78,9 @@ public:
   /// Tick-mark peak force A, N, and half width w, mm. Defaults 0.3 N, 0.25 mm.
   double tickForce_N = 0.3;
   double tickWidth_mm = 0.25;
+  /// A tick mark (the same detent) at every bifurcation of the traced path, where a branch
+  /// joins (Ikits §1's tick marks "at bifurcations" too). Default false.
+  bool tickAtBifurcations = false;
   /// Add the depth slope (LDGF) along the vessel as a field force. Default false.
   bool fieldForce = false;
   /// Lambda of the field force, mm (as LdgfForceLaw, device-sized). Default 0.005 mm.
@@ -99,6 +103,9 @@ public:
     double dt_s = 0.001) const;
   /// The tick-mark texture force along increasing arc for an arc position, N.
   double tickForce(double arc_mm) const;
+  /// One detent: the force along increasing arc at signed arc offset u from its mark, N
+  /// (-A (u/w) exp((1 - (u/w)^2) / 2); 0 for a non-finite u).
+  double detentForce(double offset_mm) const;
   /// The frame used in the last tick (tangent), for display and tests.
   Vec2 frameTangent() const { return this->Tangent; }
 

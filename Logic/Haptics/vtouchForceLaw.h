@@ -6,6 +6,7 @@
 #include "vtouchViewModel.h"
 
 #include <cstdint>
+#include <limits>
 
 namespace vtouch
 {
@@ -36,8 +37,11 @@ struct ForceInput
   double maxZoneGain_N = 0.0;        ///< k(P) in the saturation zone (its largest value), N
   double slopeWindow_mm = 1.0;       ///< the dz/dl stencil's 3D arc length w (SceneTopology)
   double agentArc_mm = 0.0;          ///< the agent's signed 3D arc position (Tracer::arcLength_mm)
-  double zoneFraction = 0.0;         ///< k(P) / gain in [0, 1] (scales spring laws)
-  double dt_s = 0.001;               ///< tick period
+  /// Signed 3D arc from the nearest bifurcation of the agent's path to the agent, mm (positive
+  /// toward increasing index; NaN when the path has none). SceneTopology::bifurcationOffset_mm.
+  double bifurcationOffset_mm = std::numeric_limits<double>::quiet_NaN();
+  double zoneFraction = 0.0;                        ///< k(P) / gain in [0, 1] (scales spring laws)
+  double dt_s = 0.001;                              ///< tick period
   const DeviceCapabilities* capabilities = nullptr; ///< may be null (no bounds applied)
 };
 

@@ -44,6 +44,7 @@ struct HapticParameters
   double proxyFriction = 0.0;            ///< mu in the constraint subspace. Default 0
   double proxyTickSpacing_mm = 0.0;      ///< tick marks every ... mm of arc; 0 none. Default 0
   double proxyTickForce_N = 0.3;         ///< tick-mark peak force, N. Default 0.3
+  bool proxyTickAtBifurcations = false;  ///< a tick mark where a branch joins. Default off
   bool proxyFieldForce = false;          ///< add the depth slope (eq. 2) along the vessel
   double proxyKappaLow = 0.15;           ///< stiffness transfer knee s0. Default 0.15
   double proxyKappaHigh = 0.5;           ///< stiffness transfer knee s1. Default 0.5

@@ -71,6 +71,7 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Proxy.friction = p.proxyFriction;
   this->Proxy.tickSpacing_mm = p.proxyTickSpacing_mm;
   this->Proxy.tickForce_N = p.proxyTickForce_N;
+  this->Proxy.tickAtBifurcations = p.proxyTickAtBifurcations;
   this->Proxy.fieldForce = p.proxyFieldForce;
   this->Proxy.fieldLambda_mm = p.ldgfLambda_mm;
   this->Proxy.snapThreshold_N = p.proxySnapThreshold_N;
@@ -255,6 +256,10 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
     fin.maxZoneGain_N = std::max(0.0, this->Zones.gain_N);
     fin.slopeWindow_mm = vm->topology().slopeWindow_mm();
     fin.agentArc_mm = this->Trace.arcLength_mm();
+    {
+      const AgentLocation& at = this->Trace.location();
+      fin.bifurcationOffset_mm = vm->topology().bifurcationOffset_mm(at.from, at.to, at.t);
+    }
     fin.dt_s = in.dt_s;
     fin.capabilities = in.capabilities;
     ForceRequest req;

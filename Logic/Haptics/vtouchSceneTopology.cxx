@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace vtouch
@@ -172,7 +173,77 @@ std::shared_ptr<const SceneTopology> SceneTopology::build(const QSkeleton& skele
     t->JunctionTarget.push_back(e.second);
   }
   t->MaxDegree = 2 + maxExtra;
+
+  // Arc coordinates along each path and the nearest bifurcation on it (forward and backward
+  // sweeps).
+  t->PathArc.assign(n, 0.0);
+  t->Bifurcation.assign(n, 0);
+  t->NearestBifurcationArc.assign(n, std::numeric_limits<double>::quiet_NaN());
+  for (const Junction& j : skeleton.junctions)
+  {
+    if (j.childPath < 0 || j.parentPath < 0)
+    {
+      continue;
+    }
+    const int last = static_cast<int>(skeleton.paths[j.parentPath].points.size()) - 1;
+    if (j.childPath == j.parentPath && (j.parentPoint == 0 || j.parentPoint == last))
+    {
+      continue; // a loop closing on its own end: no branch
+    }
+    t->Bifurcation[t->PathOffset[j.childPath] + endPoint(skeleton, j)] = 1;
+    t->Bifurcation[t->PathOffset[j.parentPath] + j.parentPoint] = 1;
+  }
+  for (int p = 0; p < t->pathCount(); ++p)
+  {
+    const int begin = t->PathOffset[p];
+    const int end = t->PathOffset[p + 1];
+    for (int g = begin + 1; g < end; ++g)
+    {
+      t->PathArc[g] = t->PathArc[g - 1] + (t->Position[g] - t->Position[g - 1]).norm();
+    }
+    double before = std::numeric_limits<double>::quiet_NaN();
+    for (int g = begin; g < end; ++g)
+    {
+      before = t->Bifurcation[g] ? t->PathArc[g] : before;
+      t->NearestBifurcationArc[g] = before;
+    }
+    double after = std::numeric_limits<double>::quiet_NaN();
+    for (int g = end - 1; g >= begin; --g)
+    {
+      after = t->Bifurcation[g] ? t->PathArc[g] : after;
+      const double b = t->NearestBifurcationArc[g];
+      if (std::isnan(b) || (!std::isnan(after) && after - t->PathArc[g] < t->PathArc[g] - b))
+      {
+        t->NearestBifurcationArc[g] = after;
+      }
+    }
+  }
   return t;
+}
+
+double SceneTopology::bifurcationOffset_mm(int from, int to, double t) const
+{
+  const int n = this->pointCount();
+  if (from < 0 || from >= n)
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  double s = this->PathArc[from];
+  double mark = this->NearestBifurcationArc[from];
+  if (to >= 0 && to < n && t > 0.0)
+  {
+    if (this->PathOf[to] != this->PathOf[from])
+    {
+      return 0.0; // on a junction edge: at the bifurcation
+    }
+    s += std::clamp(t, 0.0, 1.0) * (this->PathArc[to] - this->PathArc[from]);
+    const double other = this->NearestBifurcationArc[to];
+    if (std::isnan(mark) || (!std::isnan(other) && std::fabs(other - s) < std::fabs(mark - s)))
+    {
+      mark = other;
+    }
+  }
+  return s - mark; // NaN when the path has no bifurcation
 }
 
 int SceneTopology::neighbours(int g, int* out, int capacity) const

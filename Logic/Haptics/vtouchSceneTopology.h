@@ -55,6 +55,19 @@ public:
   const Vec3& tangent_World(int g) const { return this->Tangent[g]; }
   double torsion_per_mm(int g) const { return this->Torsion[g]; }
   double radius_mm(int g) const { return this->Radius[g]; }
+  /// 3D arc length from the start of g's path to g, mm (increases with the point index).
+  double pathArc_mm(int g) const { return this->PathArc[g]; }
+  /// True when g is a bifurcation: a branch joins its path there (a junction's parent point or
+  /// the child's end point); a loop closing on its own end is not one.
+  bool isBifurcation(int g) const { return this->Bifurcation[g] != 0; }
+  /// pathArc_mm of the bifurcation on g's path nearest to g (by arc), NaN when the path has none.
+  /// Ikits et al.'s tick-mark texture marks bifurcations with it (ConstraintProxyForceLaw).
+  double nearestBifurcationArc_mm(int g) const { return this->NearestBifurcationArc[g]; }
+  /// Signed 3D arc distance from an agent at `location` (from, to, t) to the nearest bifurcation
+  /// of its path, mm, positive when the agent lies beyond it toward increasing index; 0 on a
+  /// junction edge between two paths (the agent is at the bifurcation); NaN when there is none.
+  /// Never allocates.
+  double bifurcationOffset_mm(int from, int to, double t) const;
   /// Identifies the skeleton (changes each build) so agent state knows when indices are stale.
   std::uint64_t id() const { return this->Id; }
 
@@ -74,6 +87,9 @@ private:
   std::vector<Vec3> Tangent;
   std::vector<double> Torsion;
   std::vector<double> Radius;
+  std::vector<double> PathArc;
+  std::vector<unsigned char> Bifurcation;
+  std::vector<double> NearestBifurcationArc;
   // Junction edges in CSR form (most points have none).
   std::vector<int> JunctionBegin;
   std::vector<int> JunctionTarget;

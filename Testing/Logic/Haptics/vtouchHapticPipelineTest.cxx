@@ -241,6 +241,67 @@ TEST(HapticPipeline, ProxySnapDragMovesTheAgentInStepsOfTau)
   EXPECT_GT(worst, 0.28);
 }
 
+TEST(HapticPipeline, ProxyTickMarksABifurcationWhereTheBranchJoins)
+{
+  // Ikits' tick-mark texture at a bifurcation: a branch joins the traced vessel at x = 0 (point
+  // 160). Sliding the hand along the vessel from x = -5 to +5 mm, the free proxy's tangent force is
+  // the detent centred on the junction (drawn in from both sides, peak A at +-w, nothing 2 mm
+  // away), and with the option off there is no tangent force at all.
+  for (const bool marks : { true, false })
+  {
+    QSkeleton s = straightLine({ -40, 0, 0 }, { 40, 0, 0 }, 0.25);
+    QSkeleton branch = straightLine({ 0, 0.25, 0 }, { 0, 30, 0 }, 0.25);
+    branch.paths[0].id = 1;
+    s.paths.push_back(branch.paths[0]);
+    join(s, 1, Junction::End::Head, 0, 160);
+    ASSERT_EQ(s.validate(), "");
+    PipelineRig rig;
+    rig.view = buildView(s, topCamera({ 0, 0, 0 }));
+    rig.params.forceLaw = ForceLawId::ConstraintProxy;
+    rig.params.proxyDamping_N_s_per_m = 0.0;
+    rig.params.proxyTickAtBifurcations = marks;
+    rig.params.maxForceRate_N_per_s = 1e9;
+    ASSERT_EQ(rig.step().state, InteractionState::Tracing); // the cursor starts at x = 0
+    for (int k = 1; k <= 500; ++k)
+    {
+      rig.device.position_Device_mm.x = -0.01 * k; // back to x = -5 mm
+      rig.step();
+    }
+    const double A = rig.params.proxyTickForce_N;
+    const double w = 0.25; // ConstraintProxyForceLaw::tickWidth_mm
+    double peakBefore = 0.0, peakAfter = 0.0, far = 0.0, wrongSign = 0.0;
+    for (int k = 0; k <= 1000; ++k)
+    {
+      rig.device.position_Device_mm.x = -5.0 + 0.01 * k;
+      const AgentState a = rig.step();
+      ASSERT_EQ(a.path, 0) << k;
+      const double u = a.position_World_mm.x; // arc from the junction along increasing index
+      const double f = a.force_N.x;
+      if (std::fabs(u) > 2.0)
+        far = std::max(far, std::fabs(f));
+      else if (u < -0.05)
+        peakBefore = std::max(peakBefore, f), wrongSign = std::max(wrongSign, -f);
+      else if (u > 0.05)
+        peakAfter = std::max(peakAfter, -f), wrongSign = std::max(wrongSign, f);
+      if (marks && std::fabs(std::fabs(u) - w) < 0.01)
+      {
+        EXPECT_NEAR(std::fabs(f), A, 0.01 * A) << u;
+      }
+    }
+    if (marks)
+    {
+      EXPECT_NEAR(peakBefore, A, 0.01 * A); // pulls on toward the mark before it
+      EXPECT_NEAR(peakAfter, A, 0.01 * A);  // pulls back toward it after
+      EXPECT_LE(wrongSign, 1e-9);
+      EXPECT_LE(far, 0.02 * A);
+    }
+    else
+    {
+      EXPECT_LE(std::max({ peakBefore, peakAfter, far, wrongSign }), 1e-9);
+    }
+  }
+}
+
 TEST(HapticPipeline, ReindexingFreezesCursorWhileHandMoves)
 {
   PipelineRig rig;

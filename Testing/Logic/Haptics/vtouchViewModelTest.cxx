@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 namespace vtouch
@@ -169,6 +170,41 @@ TEST(SceneTopology, JunctionsAndLoopsAreGraphEdges)
   EXPECT_EQ(topo->maxDegree(), 3);
   EXPECT_EQ(topo->pathOf(topo->globalIndex(1, 3)), 1);
   EXPECT_EQ(topo->pointOf(topo->globalIndex(1, 3)), 3);
+}
+
+TEST(SceneTopology, BifurcationOffsetIsSignedArcToTheNearestBranchOfThePath)
+{
+  // Path 0 along x (0..20 mm, 1 mm apart); path 1 joins point 5, path 2 joins point 15; path 0
+  // also closes on its own end, which is no branch.
+  QSkeleton s = straightLine({ 0, 0, 0 }, { 20, 0, 0 }, 1.0);
+  for (int k = 1; k <= 2; ++k)
+  {
+    QSkeleton b = straightLine({ 10.0 * k - 5.0, 1, 0 }, { 10.0 * k - 5.0, 10, 0 }, 1.0);
+    b.paths[0].id = k;
+    s.paths.push_back(b.paths[0]);
+    join(s, k, Junction::End::Head, 0, 10 * k - 5);
+  }
+  join(s, 0, Junction::End::Tail, 0, 0);
+  ASSERT_EQ(s.validate(), "");
+  auto topo = SceneTopology::build(s, 1.0);
+  EXPECT_TRUE(topo->isBifurcation(5));
+  EXPECT_TRUE(topo->isBifurcation(15));
+  EXPECT_TRUE(topo->isBifurcation(topo->globalIndex(1, 0))); // the child's joining end
+  EXPECT_FALSE(topo->isBifurcation(0));                      // the loop closure
+  EXPECT_FALSE(topo->isBifurcation(20));
+  EXPECT_NEAR(topo->pathArc_mm(12), 12.0, 1e-12);
+  // Signed: negative before a branch (toward increasing index), positive after it; the nearer
+  // branch wins, between points too.
+  EXPECT_NEAR(topo->bifurcationOffset_mm(3, 4, 0.5), -1.5, 1e-12);
+  EXPECT_NEAR(topo->bifurcationOffset_mm(7, -1, 0.0), 2.0, 1e-12);
+  EXPECT_NEAR(topo->bifurcationOffset_mm(11, 10, 0.25), -4.25, 1e-12); // backward edge: 10.75
+  EXPECT_NEAR(topo->bifurcationOffset_mm(19, 20, 0.0), 4.0, 1e-12);
+  // On the child, the branch is its own joined end; on a junction edge the agent is at it.
+  EXPECT_NEAR(topo->bifurcationOffset_mm(topo->globalIndex(1, 2), -1, 0.0), 2.0, 1e-12);
+  EXPECT_EQ(topo->bifurcationOffset_mm(5, topo->globalIndex(1, 0), 0.5), 0.0);
+  // A path without branches has none.
+  auto lone = SceneTopology::build(straightLine({ 0, 0, 0 }, { 5, 0, 0 }, 1.0), 1.0);
+  EXPECT_TRUE(std::isnan(lone->bifurcationOffset_mm(2, 3, 0.5)));
 }
 
 } // namespace
