@@ -83,7 +83,8 @@ int main(int argc, char** argv)
   const vtouch::PhantomGenerator generator(spec);
   if (!generator.ok() || scales < 1)
   {
-    std::fprintf(stderr, "vesseltouch-whole-volume-vesselness: %s\n",
+    std::fprintf(stderr,
+      "vesseltouch-whole-volume-vesselness: %s\n",
       generator.ok() ? "at least one scale" : generator.error().c_str());
     return 1;
   }
