@@ -53,6 +53,11 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::centerline() const
   return this->Centerline;
 }
 
+void pqVesselTouchCenterlineExtraction::setCenterline(pqPipelineSource* filter)
+{
+  this->Centerline = filter;
+}
+
 const pqVesselTouchExtractionResult& pqVesselTouchCenterlineExtraction::result() const
 {
   return this->Result;
@@ -153,7 +158,28 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* v
   QObject::disconnect(connection);
   filter->setModifiedState(pqProxy::UNMODIFIED);
 
-  vtkPVDataInformation* info = filter->getOutputPort(0)->getDataInformation();
+  this->readResult(filter);
+  // The view follows: the new centerlines at once, or nothing stale where none were found.
+  this->showInView(filter, view, this->Result.paths > 0);
+  if (this->Result.paths <= 0)
+  {
+    Q_EMIT this->failed(
+      !this->Result.message.isEmpty()
+        ? this->Result.message
+        : tr("No centerline at this seed and intensity range: is the seed inside a vessel, and "
+             "the lower bound below the vessel's intensity?"));
+    return filter;
+  }
+  Q_EMIT this->progress(100);
+  Q_EMIT this->finished(filter, this->Result.paths);
+  return filter;
+}
+
+const pqVesselTouchExtractionResult& pqVesselTouchCenterlineExtraction::readResult(
+  pqPipelineSource* filter)
+{
+  this->Result = pqVesselTouchExtractionResult();
+  vtkPVDataInformation* info = filter ? filter->getOutputPort(0)->getDataInformation() : nullptr;
   this->Result.paths = info ? static_cast<int>(info->GetNumberOfCells()) : 0;
   if (vtkDataObject* output = clientOutput(filter))
   {
@@ -177,18 +203,5 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* v
       this->Result.message = QString::fromStdString(message->GetValue(0));
     }
   }
-  // The view follows: the new centerlines at once, or nothing stale where none were found.
-  this->showInView(filter, view, this->Result.paths > 0);
-  if (this->Result.paths <= 0)
-  {
-    Q_EMIT this->failed(
-      !this->Result.message.isEmpty()
-        ? this->Result.message
-        : tr("No centerline at this seed and intensity range: is the seed inside a vessel, and "
-             "the lower bound below the vessel's intensity?"));
-    return filter;
-  }
-  Q_EMIT this->progress(100);
-  Q_EMIT this->finished(filter, this->Result.paths);
-  return filter;
+  return this->Result;
 }

@@ -47,8 +47,12 @@ public:
 
   /// The filter of the last run, null before.
   pqPipelineSource* centerline() const;
+  /// Takes `filter` (a VesselCenterline, e.g. from a loaded state file) as the last run's.
+  void setCenterline(pqPipelineSource* filter);
   /// What the last run found.
   const pqVesselTouchExtractionResult& result() const;
+  /// Reads what `filter` (updated) found into result(): paths, range used, message.
+  const pqVesselTouchExtractionResult& readResult(pqPipelineSource* filter);
 
   /// The filter's output drawn in `view` as tubes in a colour visible on a grey MIP, over the
   /// MIP (pqVesselTouchCenterlineOverlay), when `visible`; hidden otherwise; the view rendered.

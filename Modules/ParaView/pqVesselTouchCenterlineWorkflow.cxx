@@ -8,6 +8,8 @@
 #include "pqVesselTouchVolumeChooser.h"
 
 #include "pqActiveObjects.h"
+#include "pqApplicationCore.h"
+#include "pqServerManagerModel.h"
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
 #include "pqRenderView.h"
@@ -20,9 +22,15 @@
 #include "vtkPVDataInformation.h"
 #include "vtkPVDataSetAttributesInformation.h"
 #include "vtkPointData.h"
+#include "vtkPVXMLElement.h"
+#include "vtkSMProperty.h"
+#include "vtkSMProxyLocator.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxy.h"
 #include "vtkSMSourceProxy.h"
 
 #include <QSignalBlocker>
+#include <QTimer>
 
 #include <algorithm>
 #include <cmath>
@@ -106,6 +114,20 @@ bool neighbourhoodMedian(pqPipelineSource* volume, const double point_mm[3], dou
   std::nth_element(
     values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
   median = values[values.size() / 2];
+  return true;
+}
+
+/// The voxel value nearest the world point `point_mm`; false outside the volume.
+bool voxelValue(pqPipelineSource* volume, const double point_mm[3], double& value)
+{
+  vtkImageData* image = clientImage(volume);
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  const vtkIdType id = scalars ? image->FindPoint(point_mm[0], point_mm[1], point_mm[2]) : -1;
+  if (id < 0)
+  {
+    return false;
+  }
+  value = scalars->GetComponent(id, 0);
   return true;
 }
 
@@ -200,6 +222,10 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
     &pqVesselTouchCenterlineExtraction::finished,
     this,
     &pqVesselTouchCenterlineWorkflow::centerlineReady);
+  QObject::connect(pqApplicationCore::instance(),
+    &pqApplicationCore::stateLoaded,
+    this,
+    [this]() { QTimer::singleShot(0, this, &pqVesselTouchCenterlineWorkflow::adoptFromState); });
   showMessage(this->Ui.volumeMessage, this->Volumes->problem(), true);
   showMessage(this->Ui.extractMessage, QString(), false);
   this->onAutomaticToggled(this->Ui.automaticRange->isChecked());
@@ -285,6 +311,15 @@ void pqVesselTouchCenterlineWorkflow::onSeedPicked(double x_mm,
   double z_mm,
   double value)
 {
+  const double seed_mm[3] = { x_mm, y_mm, z_mm };
+  this->acceptSeed(seed_mm, value);
+}
+
+void pqVesselTouchCenterlineWorkflow::acceptSeed(const double seed_mm[3], double value)
+{
+  const double x_mm = seed_mm[0];
+  const double y_mm = seed_mm[1];
+  const double z_mm = seed_mm[2];
   this->HasSeed = true;
   this->SeedVolume = this->Volumes->currentVolume();
   this->Seed_mm[0] = x_mm;
@@ -339,6 +374,64 @@ void pqVesselTouchCenterlineWorkflow::onSeedPicked(double x_mm,
   else
   {
     this->setExtractMessage(QString(), false);
+  }
+}
+
+void pqVesselTouchCenterlineWorkflow::adoptFromState()
+{
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  pqPipelineSource* filter = nullptr;
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    if (QLatin1String(source->getProxy()->GetXMLName()) == QLatin1String("VesselCenterline"))
+    {
+      filter = source; // the last one: the newest extraction
+    }
+  }
+  vtkSMProxy* proxy = filter ? filter->getProxy() : nullptr;
+  vtkSMProxy* input = proxy ? vtkSMPropertyHelper(proxy, "Input").GetAsProxy() : nullptr;
+  pqPipelineSource* volume = input ? model->findItem<pqPipelineSource*>(input) : nullptr;
+  if (!volume)
+  {
+    return;
+  }
+  this->Volumes->refresh();
+  this->Volumes->setCurrentVolume(volume);
+  this->Extraction->setCenterline(filter);
+  if (vtkSMProperty* automatic = proxy->GetProperty("AutomaticIntensityRange"))
+  {
+    this->Ui.automaticRange->setChecked(vtkSMPropertyHelper(automatic).GetAsInt() != 0);
+  }
+  {
+    const QSignalBlocker lowerBlocker(this->Ui.lowerThreshold);
+    const QSignalBlocker upperBlocker(this->Ui.upperThreshold);
+    this->Ui.lowerThreshold->setValue(vtkSMPropertyHelper(proxy, "LowerThreshold").GetAsDouble());
+    this->Ui.upperThreshold->setValue(vtkSMPropertyHelper(proxy, "UpperThreshold").GetAsDouble());
+  }
+  if (vtkSMPropertyHelper(proxy, "UseSeedPoint").GetAsInt() != 0)
+  {
+    double seed_mm[3];
+    vtkSMPropertyHelper(proxy, "SeedPoint").Get(seed_mm, 3);
+    double value = 0.0;
+    voxelValue(volume, seed_mm, value);
+    this->acceptSeed(seed_mm, value);
+  }
+  // The state holds the filter's settings; the range an automatic run used is in its output.
+  vtkSMSourceProxy::SafeDownCast(proxy)->UpdatePipeline();
+  const pqVesselTouchExtractionResult& result = this->Extraction->readResult(filter);
+  if (result.rangeKnown)
+  {
+    const QSignalBlocker lowerBlocker(this->Ui.lowerThreshold);
+    const QSignalBlocker upperBlocker(this->Ui.upperThreshold);
+    this->Ui.lowerThreshold->setValue(result.rangeUsed[0]);
+    this->Ui.upperThreshold->setValue(result.rangeUsed[1]);
+  }
+  const int paths = result.paths;
+  this->Extraction->showInView(filter, activeRenderView(), paths > 0);
+  this->setExtractMessage(tr("From the state file: %n centerline path(s).", "", paths), false);
+  if (paths > 0)
+  {
+    Q_EMIT this->centerlineReady(filter, paths);
   }
 }
 

@@ -52,6 +52,9 @@ public Q_SLOTS:
   void extract();
   /// Forgets the seed and removes its marker from the view.
   void clearSeed();
+  /// After a state file was loaded: the panel shows the state's VesselCenterline (its volume,
+  /// seed, intensity range and automatic choice) and feeds it on as the last extraction.
+  void adoptFromState();
 
 Q_SIGNALS:
   /// Centerlines were extracted: `paths` polylines.
@@ -70,6 +73,8 @@ private:
   void setExtractMessage(const QString& text, bool error);
   /// The range fields: bounded by the data's range, and their default (the upper tail).
   void setDataRange(pqPipelineSource* volume);
+  /// Takes a seed (world mm, the voxel value there) as picked in the current volume.
+  void acceptSeed(const double seed_mm[3], double value);
 
   Ui::pqVesselTouchDockPanel& Ui;
   pqVesselTouchVolumeChooser* Volumes = nullptr;

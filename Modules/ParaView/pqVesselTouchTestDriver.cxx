@@ -292,6 +292,17 @@ QString pqVesselTouchTestDriver::run(const QString& line)
     window->resize(name.toInt(), rest.toInt());
     return QString();
   }
+  if (verb == "savestate" || verb == "loadstate")
+  {
+    // What File > Save State and File > Load State do once the file is chosen.
+    pqApplicationCore* core = pqApplicationCore::instance();
+    if (verb == "savestate")
+    {
+      return core->saveState(name) ? QString() : QString("could not save %1").arg(name);
+    }
+    core->loadState(name.toUtf8().constData(), pqActiveObjects::instance().activeServer());
+    return QString();
+  }
   if (verb == "python")
   {
     // A script file run by ParaView's Python, as the Python Shell's "Run Script" does.
