@@ -20,7 +20,9 @@ enum class PidEffectMode : std::uint8_t
 };
 
 /// Calibration of one device model. Defaults suit an unknown joystick: the full logical range
-/// maps onto a 100 mm x 100 mm workspace and 1 N is the full-scale force.
+/// maps onto a 100 mm x 100 mm workspace and 1 N is the full-scale force. Without a preset,
+/// HidPidDevice replaces the workspace by the axes' physical extent when the report descriptor
+/// gives them a length unit (hidPhysicalWorkspace_mm).
 struct DeviceCalibration
 {
   std::string name;            ///< preset name, e.g. "OpenFFBoard (2 axes)"
