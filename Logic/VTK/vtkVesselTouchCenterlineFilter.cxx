@@ -1,6 +1,7 @@
 #include "vtkVesselTouchCenterlineFilter.h"
 
 #include "vtouchCandidateRegionRunner.h"
+#include "vtouchTubeLikenessPruner.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include "vtkCellArray.h"
@@ -22,6 +23,7 @@
 #include <itkImportImageFilter.h>
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <new>
 #include <sstream>
@@ -382,6 +384,41 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
         }
         skeleton = skeletonize(this, input, copy.data(), s, factorUsed);
       }
+    }
+    if (mask)
+    {
+      // Raw-angiogram path only (issue 16, item 2): paths whose cross-sections are not
+      // tube-like (plates) go; binary masks and the override are untouched.
+      const auto t0 = std::chrono::steady_clock::now();
+      vtouch::TubeLikenessPruner::Geometry geometry;
+      input->GetOrigin(geometry.origin_mm.data());
+      input->GetSpacing(geometry.spacing_mm.data());
+      if (vtkMatrix3x3* m = input->GetDirectionMatrix())
+      {
+        for (int r = 0; r < 3; ++r)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            geometry.direction[static_cast<std::size_t>(3 * r + c)] = m->GetElement(r, c);
+          }
+        }
+      }
+      // Sections of the volume in the range (not of the candidate region: the neck cut keeps
+      // a plate's rims, which are bars of their own; the plate around them shows in the image).
+      vtouch::TubeLikenessPruner::Foreground inRange;
+      inRange.dims = { dims[0], dims[1], dims[2] };
+      inRange.inside = [scalars, lower, upper](std::uint64_t lin)
+      {
+        const double v = scalars->GetComponent(static_cast<vtkIdType>(lin), 0);
+        return v >= lower && v <= upper;
+      };
+      const auto pruned = vtouch::TubeLikenessPruner::prune(skeleton, inRange, geometry);
+      candidateSeconds.emplace_back(
+        "tubePrune", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      vtkNew<vtkIntArray> removed;
+      removed->SetName("NonTubularPathsRemoved");
+      removed->InsertNextValue(pruned.pathsRemoved);
+      output->GetFieldData()->AddArray(removed);
     }
     fillOutput(skeleton, output);
     // Which scale the default (automatic) DownsampleFactor chose: 1 = full resolution.

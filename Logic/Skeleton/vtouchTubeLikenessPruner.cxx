@@ -1,0 +1,435 @@
+#include "vtouchTubeLikenessPruner.h"
+
+#include <algorithm>
+#include <utility>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace vtouch
+{
+
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+/// Nearest-voxel lookups of the mask at world points.
+class MaskSampler
+{
+public:
+  MaskSampler(const TubeLikenessPruner::Foreground& fg, const TubeLikenessPruner::Geometry& g)
+    : Fg(fg)
+  {
+    const auto& d = g.direction;
+    // Inverse of the direction matrix (general 3x3, by cofactors).
+    const double det = d[0] * (d[4] * d[8] - d[5] * d[7]) - d[1] * (d[3] * d[8] - d[5] * d[6]) +
+                       d[2] * (d[3] * d[7] - d[4] * d[6]);
+    const double inv = std::abs(det) > 1e-12 ? 1.0 / det : 0.0;
+    const double c[9] = { d[4] * d[8] - d[5] * d[7],
+      d[2] * d[7] - d[1] * d[8],
+      d[1] * d[5] - d[2] * d[4],
+      d[5] * d[6] - d[3] * d[8],
+      d[0] * d[8] - d[2] * d[6],
+      d[2] * d[3] - d[0] * d[5],
+      d[3] * d[7] - d[4] * d[6],
+      d[1] * d[6] - d[0] * d[7],
+      d[0] * d[4] - d[1] * d[3] };
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        this->ToIndex[3 * r + k] = c[3 * r + k] * inv / g.spacing_mm[r];
+      }
+      this->Origin[r] = g.origin_mm[r];
+    }
+  }
+
+  bool inside(const Vec3& p) const
+  {
+    const double q[3] = { p.x - this->Origin[0], p.y - this->Origin[1], p.z - this->Origin[2] };
+    std::int64_t idx[3];
+    const auto& dims = this->Fg.dims;
+    for (int r = 0; r < 3; ++r)
+    {
+      const double c = this->ToIndex[3 * r] * q[0] + this->ToIndex[3 * r + 1] * q[1] +
+                       this->ToIndex[3 * r + 2] * q[2];
+      if (!(c > -0.5 && c < static_cast<double>(dims[r]) - 0.5))
+      {
+        return false;
+      }
+      idx[r] = static_cast<std::int64_t>(std::lround(c));
+    }
+    return this->Fg.inside(
+      static_cast<std::uint64_t>(idx[0] + dims[0] * (idx[1] + dims[1] * idx[2])));
+  }
+
+  /// How far (mm) the mask runs from `start` along unit `dir`, up to `limit_mm` (steps `step_mm`).
+  double runLength(const Vec3& start, const Vec3& dir, double limit_mm, double step_mm) const
+  {
+    if (!this->inside(start))
+    {
+      return 0.0;
+    }
+    double s = 0.0;
+    while (s < limit_mm && this->inside(start + dir * (s + step_mm)))
+    {
+      s += step_mm;
+    }
+    return s;
+  }
+
+private:
+  const TubeLikenessPruner::Foreground& Fg;
+  double ToIndex[9];
+  double Origin[3];
+};
+
+double smallestSpacing(const TubeLikenessPruner::Geometry& g)
+{
+  return std::max(1e-9, std::min({ g.spacing_mm[0], g.spacing_mm[1], g.spacing_mm[2] }));
+}
+
+bool sectionIsTubeLike(const MaskSampler& sampler,
+  double voxel_mm,
+  const Vec3& p,
+  const Vec3& tangent,
+  double radius_mm,
+  const TubeLikenessPruner::Settings& s)
+{
+  const double tn = tangent.norm();
+  const Vec3 t = tn > 1e-12 ? tangent * (1.0 / tn) : Vec3{ 0.0, 0.0, 1.0 };
+  // Section basis u, v (t's smallest component picks the helper axis).
+  const double ax = std::abs(t.x), ay = std::abs(t.y), az = std::abs(t.z);
+  const Vec3 e =
+    ax <= ay && ax <= az ? Vec3{ 1, 0, 0 } : (ay <= az ? Vec3{ 0, 1, 0 } : Vec3{ 0, 0, 1 });
+  Vec3 u = e - t * t.dot(e);
+  u = u * (1.0 / u.norm());
+  const Vec3 v = t.cross(u);
+  const double r = std::max(0.5, radius_mm / voxel_mm); // voxels
+  const double longExtent = r + std::max(s.longFactor * r, s.longMinimum_voxels);
+  const double bandBound = r + std::max(s.bandMargin_voxels, r);
+  const double step = 0.25 * voxel_mm;
+  const int rays = std::max(4, s.rays);
+  for (int k = 0; k < rays; ++k)
+  {
+    const double a = 2.0 * kPi * k / rays;
+    const Vec3 dir = u * std::cos(a) + v * std::sin(a);
+    if (sampler.runLength(p, dir, longExtent * voxel_mm, step) < longExtent * voxel_mm)
+    {
+      continue;
+    }
+    // A long run: inside a plate seen in section (a band whose mid-line holds p), or a tube
+    // reaching a plate across its thickness (the band's mid-line lies beyond the tube's wall)?
+    // The band at the run's middle: its thinnest chord gives its normal and its mid-line.
+    const Vec3 mid = p + dir * (0.5 * (r + longExtent) * voxel_mm);
+    double thinnest = 1e300, offset = 0.0;
+    Vec3 normal = dir;
+    for (int j = 0; j < s.bandDirections; ++j)
+    {
+      const double b = kPi * j / s.bandDirections;
+      const Vec3 across = u * std::cos(b) + v * std::sin(b);
+      const double plus = sampler.runLength(mid, across, 2.0 * bandBound * voxel_mm, step);
+      const double minus = sampler.runLength(mid, across * -1.0, 2.0 * bandBound * voxel_mm, step);
+      if (plus + minus < thinnest)
+      {
+        thinnest = plus + minus;
+        offset = 0.5 * (plus - minus);
+        normal = across;
+      }
+    }
+    if (thinnest > 2.0 * bandBound * voxel_mm)
+    {
+      continue; // not a band (a blob or a wide structure: the neck cutter's business)
+    }
+    const Vec3 centre = mid + normal * offset;
+    if (std::abs((p - centre).dot(normal)) <= s.midLineTolerance_voxels * voxel_mm)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+enum class Status : std::uint8_t
+{
+  Tube,
+  NotTube,
+  Unjudged
+};
+
+struct Zone
+{
+  Vec3 centre_World_mm;
+  double radius_mm;
+};
+
+void removePaths(QSkeleton& skeleton, const std::vector<char>& remove)
+{
+  const int n = static_cast<int>(skeleton.paths.size());
+  std::vector<int> newPath(static_cast<std::size_t>(n), -1);
+  int kept = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    if (!remove[static_cast<std::size_t>(i)])
+    {
+      newPath[static_cast<std::size_t>(i)] = kept++;
+    }
+  }
+  std::vector<int> newJunction(skeleton.junctions.size(), -1);
+  std::vector<Junction> junctions;
+  for (std::size_t k = 0; k < skeleton.junctions.size(); ++k)
+  {
+    const Junction& j = skeleton.junctions[k];
+    const int c = newPath[static_cast<std::size_t>(j.childPath)];
+    const int p = newPath[static_cast<std::size_t>(j.parentPath)];
+    if (c < 0 || p < 0)
+    {
+      if (p >= 0) // the parent stays: its point is no longer a bifurcation (unless shared, below)
+      {
+        skeleton.paths[static_cast<std::size_t>(j.parentPath)]
+          .points[static_cast<std::size_t>(j.parentPoint)]
+          .label = PointLabel::Ordinary;
+      }
+      continue;
+    }
+    newJunction[k] = static_cast<int>(junctions.size());
+    Junction moved = j;
+    moved.childPath = c;
+    moved.parentPath = p;
+    junctions.push_back(moved);
+  }
+  std::vector<SkeletonPath> paths;
+  paths.reserve(static_cast<std::size_t>(kept));
+  for (int i = 0; i < n; ++i)
+  {
+    if (remove[static_cast<std::size_t>(i)])
+    {
+      continue;
+    }
+    SkeletonPath path = std::move(skeleton.paths[static_cast<std::size_t>(i)]);
+    path.id = newPath[static_cast<std::size_t>(i)];
+    for (PathEnd* end : { &path.head, &path.tail })
+    {
+      if (end->junction >= 0)
+      {
+        end->junction = newJunction[static_cast<std::size_t>(end->junction)];
+      }
+    }
+    paths.push_back(std::move(path));
+  }
+  skeleton.paths = std::move(paths);
+  skeleton.junctions = std::move(junctions);
+  for (const Junction& j : skeleton.junctions)
+  {
+    skeleton.paths[static_cast<std::size_t>(j.parentPath)]
+      .points[static_cast<std::size_t>(j.parentPoint)]
+      .label = PointLabel::Bifurcation;
+  }
+}
+
+/// Judged status of every point of every path (Unjudged near a junction).
+std::vector<std::vector<Status>> judge(const QSkeleton& skeleton,
+  const std::vector<std::vector<bool>>& tubeLike,
+  double voxel_mm,
+  const TubeLikenessPruner::Settings& s)
+{
+  std::vector<Zone> zones;
+  for (const Junction& j : skeleton.junctions)
+  {
+    const SkeletonPoint& q = skeleton.paths[static_cast<std::size_t>(j.parentPath)]
+                               .points[static_cast<std::size_t>(j.parentPoint)];
+    const SkeletonPath& child = skeleton.paths[static_cast<std::size_t>(j.childPath)];
+    const SkeletonPoint& end =
+      j.childEnd == Junction::End::Head ? child.points.front() : child.points.back();
+    zones.push_back({ q.position_World_mm,
+      s.junctionZoneRadii * std::max(q.radius_mm, end.radius_mm) +
+        s.junctionZoneMargin_voxels * voxel_mm });
+  }
+  std::vector<std::vector<Status>> status(skeleton.paths.size());
+  for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
+  {
+    const auto& points = skeleton.paths[i].points;
+    status[i].resize(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k)
+    {
+      bool near = false;
+      for (const Zone& z : zones)
+      {
+        near = near || (points[k].position_World_mm - z.centre_World_mm).norm() <= z.radius_mm;
+      }
+      status[i][k] = near ? Status::Unjudged : (tubeLike[i][k] ? Status::Tube : Status::NotTube);
+    }
+  }
+  return status;
+}
+} // namespace
+
+bool TubeLikenessPruner::isTubeLikeSection(const Foreground& mask,
+  const Geometry& geometry,
+  const Vec3& position_World_mm,
+  const Vec3& tangent_World,
+  double radius_mm,
+  const Settings& settings)
+{
+  const MaskSampler sampler(mask, geometry);
+  return sectionIsTubeLike(
+    sampler, smallestSpacing(geometry), position_World_mm, tangent_World, radius_mm, settings);
+}
+
+TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
+  const Foreground& mask,
+  const Geometry& geometry,
+  const Settings& s)
+{
+  Result result;
+  const MaskSampler sampler(mask, geometry);
+  const double voxel_mm = smallestSpacing(geometry);
+  // Each section once: removing paths changes only which points are near a junction.
+  std::vector<std::vector<bool>> tubeLike(skeleton.paths.size());
+  for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
+  {
+    for (const SkeletonPoint& q : skeleton.paths[i].points)
+    {
+      tubeLike[i].push_back(
+        sectionIsTubeLike(sampler, voxel_mm, q.position_World_mm, q.tangent_World, q.radius_mm, s));
+    }
+  }
+  for (;;)
+  {
+    const std::vector<std::vector<Status>> status = judge(skeleton, tubeLike, voxel_mm, s);
+    std::vector<char> hasChild(skeleton.paths.size(), 0);
+    for (const Junction& j : skeleton.junctions)
+    {
+      if (j.parentPath != j.childPath)
+      {
+        hasChild[static_cast<std::size_t>(j.parentPath)] = 1;
+      }
+    }
+    // Mostly not tube-like (a plate's path), whether or not others hang on it.
+    std::vector<char> plate(skeleton.paths.size(), 0), unjudged(skeleton.paths.size(), 0);
+    for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
+    {
+      const auto judged = std::count_if(
+        status[i].begin(), status[i].end(), [](Status x) { return x != Status::Unjudged; });
+      const auto notTube = std::count(status[i].begin(), status[i].end(), Status::NotTube);
+      plate[i] = judged >= s.minimumJudgedPoints &&
+                 static_cast<double>(notTube) >= s.notTubeFraction * static_cast<double>(judged);
+      unjudged[i] = judged < s.minimumJudgedPoints;
+    }
+    std::vector<char> remove(skeleton.paths.size(), 0);
+    bool any = false;
+    for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
+    {
+      // A path too short to judge (all of it near junctions) goes with a plate path it hangs on:
+      // the bridges of a loop around a plate.
+      bool onPlate = false;
+      for (const PathEnd& end : { skeleton.paths[i].head, skeleton.paths[i].tail })
+      {
+        if (end.junction >= 0)
+        {
+          const int parent = skeleton.junctions[static_cast<std::size_t>(end.junction)].parentPath;
+          onPlate =
+            onPlate || (parent != static_cast<int>(i) && plate[static_cast<std::size_t>(parent)]);
+        }
+      }
+      if (!hasChild[i] && (plate[i] || (unjudged[i] && onPlate)))
+      {
+        remove[i] = 1;
+        any = true;
+        ++result.pathsRemoved;
+        result.pointsRemoved += skeleton.paths[i].points.size();
+      }
+    }
+    if (!any)
+    {
+      break;
+    }
+    removePaths(skeleton, remove);
+    std::vector<std::vector<bool>> keptTube;
+    for (std::size_t i = 0; i < remove.size(); ++i)
+    {
+      if (!remove[i])
+      {
+        keptTube.push_back(std::move(tubeLike[i]));
+      }
+    }
+    tubeLike = std::move(keptTube);
+  }
+  // Free ends that run onto a plate: back to the last tube-like point (only the part on the
+  // clutter).
+  const std::vector<std::vector<Status>> status = judge(skeleton, tubeLike, voxel_mm, s);
+  for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
+  {
+    SkeletonPath& path = skeleton.paths[i];
+    const auto& st = status[i];
+    const int n = static_cast<int>(st.size());
+    int lastChildPoint = -1, firstChildPoint = n;
+    for (const Junction& j : skeleton.junctions)
+    {
+      if (j.parentPath == path.id)
+      {
+        lastChildPoint = std::max(lastChildPoint, j.parentPoint);
+        firstChildPoint = std::min(firstChildPoint, j.parentPoint);
+      }
+    }
+    // The end back to the last two consecutive tube-like points, when what lies beyond them is
+    // mostly not tube-like.
+    const auto beyond = [&st](int from, int to)
+    {
+      int judged = 0, notTube = 0;
+      for (int q = from; q < to; ++q)
+      {
+        judged += st[static_cast<std::size_t>(q)] != Status::Unjudged ? 1 : 0;
+        notTube += st[static_cast<std::size_t>(q)] == Status::NotTube ? 1 : 0;
+      }
+      return std::make_pair(judged, notTube);
+    };
+    if (path.tail.junction < 0)
+    {
+      int k = n - 1;
+      while (k >= 1 && !(st[static_cast<std::size_t>(k)] == Status::Tube &&
+                         st[static_cast<std::size_t>(k - 1)] == Status::Tube))
+      {
+        --k;
+      }
+      const auto [judged, notTube] = beyond(k + 1, n);
+      if (k >= 1 && k > lastChildPoint && notTube >= s.minimumTrimPoints &&
+          static_cast<double>(notTube) >= s.notTubeFraction * static_cast<double>(judged))
+      {
+        result.pointsRemoved += static_cast<std::size_t>(n - 1 - k);
+        path.points.resize(static_cast<std::size_t>(k + 1));
+        path.points.back().label = PointLabel::EndPoint;
+        ++result.endsTrimmed;
+      }
+    }
+    const int m = static_cast<int>(path.points.size());
+    if (path.head.junction < 0)
+    {
+      int k = 0;
+      while (k < m - 1 && !(st[static_cast<std::size_t>(k)] == Status::Tube &&
+                            st[static_cast<std::size_t>(k + 1)] == Status::Tube))
+      {
+        ++k;
+      }
+      const auto [judged, notTube] = beyond(0, k);
+      if (k < m - 1 && k > 0 && k < firstChildPoint && notTube >= s.minimumTrimPoints &&
+          static_cast<double>(notTube) >= s.notTubeFraction * static_cast<double>(judged))
+      {
+        path.points.erase(path.points.begin(), path.points.begin() + k);
+        path.points.front().label = PointLabel::EndPoint;
+        for (Junction& j : skeleton.junctions)
+        {
+          if (j.parentPath == path.id)
+          {
+            j.parentPoint -= k;
+          }
+        }
+        result.pointsRemoved += static_cast<std::size_t>(k);
+        ++result.endsTrimmed;
+      }
+    }
+  }
+  return result;
+}
+
+} // namespace vtouch

@@ -1,0 +1,101 @@
+// Issue 16, item 2, "remove skeleton branches whose cross-sections are not tube-like": after the
+// voxel coder has coded the raw-angiogram candidate region, the paths that run inside a plate
+// (bone-like clutter at vessel intensity, thin at the scale of its own thickness, so the neck
+// cutter keeps it) are removed, and the free ends that run onto one are trimmed. The product's own
+// rule (Docs/CENTERLINES.md, "Raw angiograms", step 5); no paper gives one.
+//
+// The rule, per skeleton point p with tangent t and radius r (the coder's radius, in voxels of the
+// smallest spacing): in the plane through p normal to t, rays in 32 directions follow the
+// candidate mask from p (nearest voxel, steps of 0.25 voxel) until they leave it. The section is
+// NOT tube-like when one ray runs on for more than r + L (L = max(2 r, 6 voxels)) inside a band
+// whose mid-line passes through p: at r + L/2 along the ray, the thinnest chord of the section
+// (16 directions) is at most 2 (r + max(2, r)) voxels long, and its mid-point lies within 1.25
+// voxels of p along that chord. That is a plate seen in section (a path in a plate's mid-sheet,
+// or on its rim, where the band runs one way). A tube's section stops near r on every ray; a tube
+// touching a plate reaches the plate across its thickness, and that band's mid-line lies beyond
+// the tube's wall (d + w/2 from the axis); a bifurcation's daughter leaves the section near the
+// parent's wall.
+// Points within 2 R + 1 voxels of a junction (R its radius) are not judged: sections there are
+// legitimately elongated. A path whose judged points are mostly (>= 1/2) not tube-like is removed
+// when no other path hangs on it (repeated, so loops around a plate go path by path); a free end
+// whose last judged points are not tube-like is trimmed back to the last tube-like point.
+#pragma once
+
+#include "vtouchQSkeleton.h"
+#include "vtouchSparseVesselMask.h"
+#include "vtouchVector.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+
+namespace vtouch
+{
+
+class TubeLikenessPruner
+{
+public:
+  /// The mask's grid: world = origin + direction * (index * spacing) (ITK's and VTK's frame).
+  struct Geometry
+  {
+    std::array<double, 3> origin_mm{ 0.0, 0.0, 0.0 };
+    std::array<double, 3> spacing_mm{ 1.0, 1.0, 1.0 };
+    std::array<double, 9> direction{ 1, 0, 0, 0, 1, 0, 0, 0, 1 }; ///< row-major
+  };
+
+  struct Settings
+  {
+    int rays = 32;                         ///< directions in the section plane
+    double longFactor = 2.0;               ///< L = max(longFactor r, longMinimum_voxels)
+    double longMinimum_voxels = 4.0;       ///< a plate's band: longer than a thin vessel's wall
+    double bandMargin_voxels = 2.0;        ///< band half-width bound r + max(margin, r)
+    int bandDirections = 16;               ///< chords through the run's middle (half a turn)
+    double midLineTolerance_voxels = 1.25; ///< p this close to the band's mid-line: in the plate
+    double junctionZoneRadii = 0.5; ///< points within zoneRadii R + margin of a junction: unjudged
+    double junctionZoneMargin_voxels = 1.0;
+    double notTubeFraction = 0.5; ///< a path goes when this share of its judged points is not tube
+    int minimumJudgedPoints = 2;  ///< fewer judged points: unjudged (goes with a plate parent)
+    int minimumTrimPoints = 3;    ///< a free end is trimmed when this many end points are not tube
+  };
+
+  struct Result
+  {
+    int pathsRemoved = 0;
+    int endsTrimmed = 0;
+    std::size_t pointsRemoved = 0;
+  };
+
+  /// What the sections are taken of: inside(linear index, x fastest) over a grid of `dims`.
+  struct Foreground
+  {
+    std::array<std::int64_t, 3> dims{ 0, 0, 0 };
+    std::function<bool(std::uint64_t)> inside;
+  };
+  /// A mask as the foreground (the mask must outlive the result).
+  static Foreground foreground(const SparseVesselMask& mask)
+  {
+    return { mask.dims(), [&mask](std::uint64_t lin) { return mask.test(lin); } };
+  }
+
+  /// True when the foreground's section at position_World_mm normal to tangent_World is tube-like.
+  static bool isTubeLikeSection(const Foreground& foreground,
+    const Geometry& geometry,
+    const Vec3& position_World_mm,
+    const Vec3& tangent_World,
+    double radius_mm,
+    const Settings& settings);
+
+  /// Removes the non-tube-like paths and trims non-tube-like free ends of `skeleton` in place
+  /// (ids, junctions and labels kept consistent: QSkeleton::validate() stays empty).
+  static Result prune(QSkeleton& skeleton,
+    const Foreground& foreground,
+    const Geometry& geometry,
+    const Settings& settings);
+  static Result prune(QSkeleton& skeleton, const Foreground& foreground, const Geometry& geometry)
+  {
+    return prune(skeleton, foreground, geometry, Settings{});
+  }
+};
+
+} // namespace vtouch
