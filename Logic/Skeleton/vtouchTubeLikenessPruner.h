@@ -6,19 +6,22 @@
 //
 // The rule, per skeleton point p with tangent t and radius r (the coder's radius, in voxels of the
 // smallest spacing): in the plane through p normal to t, rays in 32 directions follow the
-// candidate mask from p (nearest voxel, steps of 0.25 voxel) until they leave it. The section is
-// NOT tube-like when one ray runs on for more than r + L (L = max(2 r, 6 voxels)) inside a band
-// whose mid-line passes through p: at r + L/2 along the ray, the thinnest chord of the section
-// (16 directions) is at most 2 (r + max(2, r)) voxels long, and its mid-point lies within 1.25
-// voxels of p along that chord. That is a plate seen in section (a path in a plate's mid-sheet,
-// or on its rim, where the band runs one way). A tube's section stops near r on every ray; a tube
-// touching a plate reaches the plate across its thickness, and that band's mid-line lies beyond
-// the tube's wall (d + w/2 from the axis); a bifurcation's daughter leaves the section near the
-// parent's wall.
-// Points within 2 R + 1 voxels of a junction (R its radius) are not judged: sections there are
-// legitimately elongated. A path whose judged points are mostly (>= 1/2) not tube-like is removed
-// when no other path hangs on it (repeated, so loops around a plate go path by path); a free end
-// whose last judged points are not tube-like is trimmed back to the last tube-like point.
+// foreground from p (nearest voxel, steps of 0.25 voxel) until they leave it. The foreground is
+// the volume in the intensity range (the filter's choice), not the candidate region: the neck cut
+// keeps a plate's rims, bars of their own, and only the image shows the plate around them. The
+// section is NOT tube-like when one ray runs on for more than r + L (L = max(2 r, 4 voxels))
+// inside a band whose mid-line passes through p: at (2 r + L)/2 along the ray, the thinnest chord
+// of the section (16 directions) is at most 2 (r + max(2, r)) voxels long, and its mid-point lies
+// within 1.25 voxels of p along that chord. That is a plate seen in section (a path in a plate's
+// mid-sheet, or on its rim, where the band runs one way). A tube's section stops near r on every
+// ray; a tube touching a plate reaches the plate across its thickness, and that band's mid-line
+// lies beyond the tube's wall (d + w/2 from the axis); a wide structure (bone, a blob) is no band.
+// Points within R/2 + 1 voxel of a junction (R the larger radius there) are not judged: sections
+// there are legitimately elongated. A path whose judged points (>= 2) are mostly (>= 1/2) not
+// tube-like is removed when no other path hangs on it; a path with fewer judged points goes with
+// such a path it hangs on (the bridges of a loop around a plate); repeated until none goes. A free
+// end is trimmed back to its last two consecutive tube-like points when at least 3 points beyond
+// them are judged and mostly not tube-like (only the part on the clutter goes).
 #pragma once
 
 #include "vtouchQSkeleton.h"

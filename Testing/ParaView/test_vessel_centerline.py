@@ -112,6 +112,8 @@ check.true(a_poly.GetNumberOfPoints() > 0 and numpy.allclose(
 used = a_poly.GetFieldData().GetArray("IntensityRangeUsed")
 check.true(used is not None and used.GetValue(0) == 0.5,
            "the binary mask's range is its midpoint (%s)" % (used and used.GetValue(0)))
+check.true(a_poly.GetFieldData().GetArray("NonTubularPathsRemoved") is None,
+           "a binary mask is not pruned for tube-likeness (raw-intensity path only)")
 
 DATA = os.environ.get("VTOUCH_SHARED_DATA_DIR",
                       os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
@@ -132,6 +134,10 @@ if os.path.exists(CTA):
     check.equal(fd.GetAbstractArray("ExtractionMessage").GetValue(0), "",
                 "raw CTA from a seed only: no message")
     check.equal(fd.GetArray("IntensityRangeAutomatic").GetValue(0), 1, "the range was estimated")
+    pruned = fd.GetArray("NonTubularPathsRemoved")
+    check.true(pruned is not None and pruned.GetValue(0) >= 0,
+               "the raw path judged the sections' tube-likeness (%s paths removed)"
+               % (pruned and pruned.GetValue(0)))
     lower = fd.GetArray("IntensityRangeUsed").GetValue(0)
     points = vtk_to_numpy(poly.GetPoints().GetData())
     dist = numpy.sqrt(((reference[:, None, :] - points[None, :, :]) ** 2).sum(-1)).min(1)
