@@ -36,6 +36,7 @@
 #include <QJsonDocument>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QProgressBar>
 #include <QSaveFile>
 #include <QSpinBox>
@@ -265,6 +266,22 @@ QString pqVesselTouchTestDriver::run(const QString& line)
     }
     pqActiveObjects::instance().setActiveSource(source);
     return QString();
+  }
+  if (verb == "accept")
+  {
+    // Answers "Yes" (or OK) in the open message box whose title contains TITLE.
+    for (QWidget* top : QApplication::topLevelWidgets())
+    {
+      auto* box = qobject_cast<QMessageBox*>(top);
+      if (box && box->isVisible() && box->windowTitle().contains(name))
+      {
+        QAbstractButton* yes = box->button(QMessageBox::Yes);
+        QAbstractButton* ok = box->button(QMessageBox::Ok);
+        QTimer::singleShot(0, yes ? yes : ok, &QAbstractButton::click);
+        return QString();
+      }
+    }
+    return QString("no message box %1 open").arg(name);
   }
   if (verb == "dismiss")
   {
