@@ -7,11 +7,13 @@
 
 #include <itkImage.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <vector>
 
 using namespace vtouch;
 
