@@ -5,7 +5,8 @@ an Otsu mask of the same volume, in the same run.
 Inputs:
   * the RawAngiogram VesselPhantom family: seeds x Gaussian noise levels x sizes (full: 128^3,
     256^3 and 384^3, seeds 1-3 below 384^3 and seed 1 at 384^3, noise 20 and 50 on a tissue of 400
-    and vessels of 1000; --quick: 96^3, seed 1, both noise levels); the seed is the root's
+    and vessels of 1000; in full mode also two TOF-MRA-like cases, 128^3 and 256^3 with tissue
+    150 under Rician noise 40; --quick: 96^3, seed 1, both noise levels); the seed is the root's
     first point (port 1);
   * the shared raw CTA (vmtk-aorta/aorta.mha) seeded on the first point of VMTK's reference
     centerline, judged by the fraction of that reference within 1 mm of the extraction;
@@ -70,6 +71,14 @@ def phantom_cases(quick):
                                       "NoiseStandardDeviation": noise,
                                       "AngiogramSegments": 100 if n < 128 else 200 if n < 256
                                       else 400}})
+    if not quick:
+        # TOF-MRA-like: dim tissue under Rician noise (magnitude images: the background's noise
+        # is biased upward and never negative).
+        for n in (128, 256):
+            cases.append({"tag": "n%d_s1_mra" % n,
+                          "phantom": {"Dimensions": [n, n, n], "Seed": 1, "NoiseModel": "Rician",
+                                      "TissueIntensity": 150, "NoiseStandardDeviation": 40,
+                                      "AngiogramSegments": 200}})
     return cases
 
 
