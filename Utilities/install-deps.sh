@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   # tool chain
-  build-essential cmake pkg-config git clang libclang-rt-14-dev clang-format
+  build-essential cmake pkg-config git clang libclang-rt-14-dev clang-format ccache
   # the host: ParaView 5.11 with its bundled VTK 9.2, and what its CMake package looks for
   paraview paraview-dev python3-paraview
   libboost-dev libutfcpp-dev libexpat1-dev libeigen3-dev libfreetype-dev libgl2ps-dev libglew-dev
