@@ -1,7 +1,8 @@
 #include "vtouchRawVoxelLayout.h"
 
+#include "vtouchHeaderText.h"
+
 #include <algorithm>
-#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,32 +21,6 @@ bool hostIsLittleEndian()
   unsigned char first = 0;
   std::memcpy(&first, &probe, 1);
   return first == 1;
-}
-
-std::string lowerCase(std::string text)
-{
-  std::transform(text.begin(),
-    text.end(),
-    text.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
-std::string trimmed(const std::string& text)
-{
-  const auto begin = text.find_first_not_of(" \t\r\n");
-  if (begin == std::string::npos)
-  {
-    return std::string();
-  }
-  const auto end = text.find_last_not_of(" \t\r\n");
-  return text.substr(begin, end - begin + 1);
-}
-
-bool endsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 /// A data file named in a header: relative names are relative to the header's folder.

@@ -1,6 +1,7 @@
 #include "vtouchVolumeIO.h"
 
 #include "vtouchDicomSeries.h"
+#include "vtouchHeaderText.h"
 #include "vtouchImageIOVolumeSource.h"
 
 #include <itkMetaImageIO.h>
@@ -175,21 +176,6 @@ enum class FileKind
   MetaImage,
   Other
 };
-
-std::string lowerCase(std::string text)
-{
-  std::transform(text.begin(),
-    text.end(),
-    text.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
-bool endsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 FileKind kindFromName(const std::string& path)
 {

@@ -19,32 +19,17 @@ Exits non-zero on any failure.
 import os
 import shutil
 import subprocess
-import sys
 import tempfile
 
 import numpy as np
 
 from paraview.simple import Delete, LoadPlugin, OpenDataFile
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtouch_testing import Check, plugin_path, test_volume_writer
 
-PLUGIN = os.environ["VESSELTOUCH_PLUGIN"]
-LoadPlugin(PLUGIN, ns=globals())
-
-FAILURES = []
-
-
-def check(condition, message):
-    if not condition:
-        FAILURES.append(message)
-        print("FAIL:", message)
-
-
-def writer():
-    path = os.environ.get("VESSELTOUCH_TEST_VOLUME_WRITER")
-    if not path:
-        build = os.path.abspath(os.path.join(os.path.dirname(PLUGIN), *[os.pardir] * 4))
-        path = os.path.join(build, "Testing", "Logic", "IO", "vtouchWriteTestVolume")
-    return path
+LoadPlugin(plugin_path(), ns=globals())
+CHECK = Check("reader pieces")
+check = CHECK.true
 
 
 def reader_for(path):
@@ -158,20 +143,17 @@ def main():
         for name, streams in (("v.nrrd", True), ("v.nhdr", True), ("v.nii", True),
                               ("v.mha", True), ("v.mhd", True), ("v.nii.gz", False)):
             path = os.path.join(tmp, name)
-            subprocess.run([writer(), "volume", path, "oblique", "int16"] + size, check=True,
+            subprocess.run([test_volume_writer(), "volume", path, "oblique", "int16"] + size, check=True,
                            stdout=subprocess.DEVNULL)
             check_pieces(name, path, streams)
         series = os.path.join(tmp, "dicom")
         os.makedirs(series)
-        subprocess.run([writer(), "dicom", series, "1.2.826.0.1.3680043.2.1125.91", "oblique",
+        subprocess.run([test_volume_writer(), "dicom", series, "1.2.826.0.1.3680043.2.1125.91", "oblique",
                         "-1", "IM", "23", "17", "11"], check=True, stdout=subprocess.DEVNULL)
         check_pieces("DICOM series", series, True, dicom=True)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    if FAILURES:
-        print("%d failure(s)" % len(FAILURES))
-        sys.exit(1)
-    print("reader pieces: all checks passed")
+    CHECK.finish()
 
 
 main()

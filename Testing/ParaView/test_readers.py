@@ -31,6 +31,7 @@ import tempfile
 import numpy as np
 
 from paraview import servermanager as sm
+from vtouch_testing import test_volume_writer
 from paraview.simple import LoadPlugin, OpenDataFile, XMLPolyDataReader
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -49,20 +50,8 @@ def check(condition, message):
         print("FAIL:", message)
 
 
-def writer_executable():
-    path = os.environ.get("VESSELTOUCH_TEST_VOLUME_WRITER")
-    if not path:
-        # <build>/lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so -> <build>
-        build = os.path.abspath(os.path.join(os.path.dirname(PLUGIN), *[os.pardir] * 4))
-        path = os.path.join(build, "Testing", "Logic", "IO", "vtouchWriteTestVolume")
-    if not os.access(path, os.X_OK):
-        raise RuntimeError("test volume writer not found: %s (set VESSELTOUCH_TEST_VOLUME_WRITER)"
-                           % path)
-    return path
-
-
 def itk_write(*args):
-    out = subprocess.run([writer_executable()] + [str(a) for a in args], check=True,
+    out = subprocess.run([test_volume_writer()] + [str(a) for a in args], check=True,
                          capture_output=True, text=True).stdout
     lines = [line for line in out.splitlines() if line.startswith("{")]
     return json.loads(lines[-1]) if lines else None

@@ -42,6 +42,20 @@ def plugin_path():
     return path
 
 
+def test_volume_writer():
+    """The ITK test volume writer (Testing/Logic/IO/vtouchWriteTestVolume): from
+    VESSELTOUCH_TEST_VOLUME_WRITER, or beside the plugin's build tree."""
+    path = os.environ.get("VESSELTOUCH_TEST_VOLUME_WRITER")
+    if not path:
+        # <build>/lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so -> <build>
+        build = os.path.abspath(os.path.join(os.path.dirname(plugin_path()), *[os.pardir] * 4))
+        path = os.path.join(build, "Testing", "Logic", "IO", "vtouchWriteTestVolume")
+    if not os.access(path, os.X_OK):
+        raise RuntimeError("test volume writer not found: %s (set VESSELTOUCH_TEST_VOLUME_WRITER)"
+                           % path)
+    return path
+
+
 def run_pvpython(code, env=None, timeout=120):
     """Runs `code` in a fresh pvpython; returns (exit code, stdout + stderr)."""
     full_env = dict(os.environ)

@@ -26,15 +26,18 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.dirname(HERE)]  # vtouch_pvserver here, vtouch_testing above
 from vtouch_pvserver import ParallelServer, port_is_free, wait_until  # noqa: E402
+from vtouch_testing import Check, plugin_path, test_volume_writer  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 
-PLUGIN = os.environ["VESSELTOUCH_PLUGIN"]
-FAILURES = []
+PLUGIN = plugin_path()
+CHECK = Check("client/server reader pieces")
+check = CHECK.true
 
 RANK_SCRIPT = r"""
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
@@ -64,20 +67,6 @@ add("extent", list(e))
 add("points", [image.GetNumberOfPoints()])
 add("bytes_read", [bytes_read.GetValue(0) if bytes_read else -1])
 """
-
-
-def check(condition, message):
-    if not condition:
-        FAILURES.append(message)
-        print("FAIL:", message)
-
-
-def writer():
-    path = os.environ.get("VESSELTOUCH_TEST_VOLUME_WRITER")
-    if not path:
-        build = os.path.abspath(os.path.join(os.path.dirname(PLUGIN), *[os.pardir] * 4))
-        path = os.path.join(build, "Testing", "Logic", "IO", "vtouchWriteTestVolume")
-    return path
 
 
 def expected_voxels(size):
@@ -166,7 +155,7 @@ def main():
     folder = tempfile.mkdtemp(prefix="vtouch-cs-")
     size = [40, 30, 24]
     path = os.path.join(folder, "volume.nrrd")
-    subprocess.run([writer(), "volume", path, "axial", "int16"] + [str(s) for s in size],
+    subprocess.run([test_volume_writer(), "volume", path, "axial", "int16"] + [str(s) for s in size],
                    check=True, stdout=subprocess.DEVNULL)
     server = ParallelServer(ranks=2)
     try:
@@ -189,16 +178,12 @@ def main():
         check(code is not None, "the server did not exit after the client disconnected")
         check(wait_until(lambda: port_is_free(port), 10.0), "port %d is still taken" % port)
     except Exception as e:  # noqa: BLE001 - report the server's output with any failure
-        FAILURES.append("%s: %s" % (type(e).__name__, e))
-        print("FAIL:", e)
+        check(False, "%s: %s" % (type(e).__name__, e))
         print("server output:\n" + server.output())
     finally:
         server.stop()
         shutil.rmtree(folder, ignore_errors=True)
-    if FAILURES:
-        print("%d failure(s)" % len(FAILURES))
-        sys.exit(1)
-    print("client/server reader pieces: all checks passed")
+    CHECK.finish()
 
 
 main()
