@@ -1,5 +1,12 @@
 #include "pqVesselTouchAutoStart.h"
 
+#include "pqVesselTouchBlendModeNames.h"
+
+#include "pqApplicationCore.h"
+#include "pqRepresentation.h"
+#include "pqServerManagerModel.h"
+
+#include "vtkSMProxy.h"
 #include "vtkSMSettings.h"
 
 pqVesselTouchAutoStart::pqVesselTouchAutoStart(QObject* parentObject)
@@ -19,4 +26,17 @@ void pqVesselTouchAutoStart::startup()
       "*.mha *.mhd", "MetaImage, oriented (VesselTouch)", "AnatomicalMetaImageReader",
       "*.dcm", "DICOM series, oriented (VesselTouch)", "AnatomicalDICOMSeriesReader"]}}})json",
     0.5);
+
+  // Every representation, also those a state file brings back, names blend mode 1 "Maximum
+  // Intensity" so the Properties panel tells the truth about VesselTouch's MIP (issue 20, item 11).
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  QObject::connect(model,
+    &pqServerManagerModel::representationAdded,
+    this,
+    [](pqRepresentation* representation)
+    { pqVesselTouchBlendModeNames::nameMaximumIntensity(representation->getProxy()); });
+  for (pqRepresentation* representation : model->findItems<pqRepresentation*>())
+  {
+    pqVesselTouchBlendModeNames::nameMaximumIntensity(representation->getProxy());
+  }
 }

@@ -1,5 +1,6 @@
 // Runs when the plugin loads into the ParaView GUI: makes VesselTouch's oriented readers the
-// default File > Open choice for NIfTI, NRRD, MetaImage and DICOM files.
+// default File > Open choice for NIfTI, NRRD, MetaImage and DICOM files, and names blend mode 1
+// "Maximum Intensity" in every representation's Blend Mode list (pqVesselTouchBlendModeNames).
 #ifndef pqVesselTouchAutoStart_h
 #define pqVesselTouchAutoStart_h
 

@@ -1,5 +1,6 @@
 #include "pqVesselTouchShowMIPReaction.h"
 
+#include "pqVesselTouchBlendModeNames.h"
 #include "pqVesselTouchVolumeCheck.h"
 
 #include "pqActiveObjects.h"
@@ -147,8 +148,10 @@ bool pqVesselTouchShowMIPReaction::showAsMIP(pqPipelineSource* source, pqView* v
     return false;
   }
   vtkSMRepresentationProxy::SetRepresentationType(repr, "Volume");
-  // ParaView names only Composite/Isosurface/Slice; maximum intensity is blend mode 1.
-  vtkSMPropertyHelper(repr, "BlendMode").Set(1);
+  // ParaView names only Composite/Isosurface/Slice; maximum intensity is blend mode 1, named in the
+  // Properties panel's list so the panel shows "Maximum Intensity" rather than "Composite".
+  pqVesselTouchBlendModeNames::nameMaximumIntensity(repr);
+  vtkSMPropertyHelper(repr, "BlendMode").Set(pqVesselTouchBlendModeNames::MaximumIntensity);
   vtkSMPVRepresentationProxy::SetScalarColoring(repr, scalarName.constData(), vtkDataObject::POINT);
   vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(repr, false, true);
   vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy();

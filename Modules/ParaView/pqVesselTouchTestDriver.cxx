@@ -7,6 +7,7 @@
 #include "pqCoreUtilities.h"
 #include "pqPVApplicationCore.h"
 #include "pqPipelineSource.h"
+#include "pqPropertyWidget.h"
 #include "pqPythonManager.h"
 #include "pqRenderView.h"
 #include "pqServerManagerModel.h"
@@ -14,6 +15,7 @@
 #include "vtkCamera.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
+#include "vtkSMProperty.h"
 #include "vtkSMProxy.h"
 #include "vtkSMRenderViewProxy.h"
 #include "vtkSMSaveScreenshotProxy.h"
@@ -122,6 +124,29 @@ T* findNamed(const QString& name)
 {
   QWidget* window = mainWindow();
   return window ? window->findChild<T*>(name) : nullptr;
+}
+// The combo box of the Properties panel's widget for the property named XML_NAME (e.g. BlendMode
+// of the active representation), preferring a visible one; null when the panel shows none.
+QComboBox* propertyCombo(const QString& xmlName)
+{
+  QWidget* window = mainWindow();
+  QComboBox* found = nullptr;
+  for (pqPropertyWidget* widget :
+    window ? window->findChildren<pqPropertyWidget*>() : QList<pqPropertyWidget*>())
+  {
+    vtkSMProperty* property = widget->property();
+    auto* combo = widget->findChild<QComboBox*>();
+    if (!property || !combo || xmlName != property->GetXMLName())
+    {
+      continue;
+    }
+    if (combo->isVisible())
+    {
+      return combo;
+    }
+    found = found ? found : combo;
+  }
+  return found;
 }
 } // namespace
 
@@ -254,6 +279,19 @@ QString pqVesselTouchTestDriver::run(const QString& line)
     {
       return QString("no editable widget %1").arg(name);
     }
+    return QString();
+  }
+  if (verb == "setproperty")
+  {
+    // Picks TEXT in the Properties panel's combo box for property NAME, as a user's click does.
+    QComboBox* combo = propertyCombo(name);
+    const int index = combo ? combo->findText(rest) : -1;
+    if (index < 0)
+    {
+      return combo ? QString("%1 has no item %2").arg(name, rest)
+                   : QString("the Properties panel shows no %1").arg(name);
+    }
+    combo->setCurrentIndex(index);
     return QString();
   }
   if (verb == "select")
@@ -404,6 +442,16 @@ QJsonObject pqVesselTouchTestDriver::state() const
     }
   }
   state.insert("widgets", widgets);
+
+  QJsonObject properties;
+  for (const char* xmlName : { "BlendMode", "Representation" })
+  {
+    if (QComboBox* combo = propertyCombo(xmlName))
+    {
+      properties.insert(xmlName, describe(combo));
+    }
+  }
+  state.insert("properties", properties);
 
   QJsonObject actions;
   if (window)

@@ -19,6 +19,7 @@ phantom = VesselPhantom(Shape="Helix", Dimensions=[64, 64, 64])  # noqa: F821
 rep = vesseltouch.ShowAsMIP(phantom, view)
 check.equal(rep.Representation, "Volume", "representation")
 check.equal(vesseltouch.mip.BlendMode(rep), 1, "blend mode is maximum intensity")
+check.equal(rep.BlendMode, "Maximum Intensity", "the blend mode's name tells the truth")
 check.equal(rep.ColorArrayName[1], "Intensity", "coloured by the scalars")
 
 with tempfile.TemporaryDirectory() as tmp:

@@ -3,8 +3,18 @@
 from paraview import simple
 
 # ParaView's Volume representation names only Composite, Isosurface and Slice blend modes;
-# maximum intensity is blend mode 1, set on the property itself.
+# maximum intensity is blend mode 1, set on the property itself and named "Maximum Intensity" in the
+# property's list (as the GUI plugin does) so that rep.BlendMode and traces tell the truth.
 MAXIMUM_INTENSITY_BLEND = 1
+
+
+def _name_maximum_intensity(rep):
+    domain = rep.SMProxy.GetProperty("BlendMode").FindDomain("vtkSMEnumerationDomain")
+    if domain is None:
+        return
+    values = [domain.GetEntryValue(i) for i in range(domain.GetNumberOfEntries())]
+    if MAXIMUM_INTENSITY_BLEND not in values:
+        domain.AddEntry("Maximum Intensity", MAXIMUM_INTENSITY_BLEND)
 
 
 def _scalar_array(source, port):
@@ -38,6 +48,7 @@ def ShowAsMIP(source=None, view=None, port=0):
     name, (lo, hi) = _scalar_array(source, port)
     rep = simple.Show(simple.OutputPort(source, port), view)
     rep.SetRepresentationType("Volume")
+    _name_maximum_intensity(rep)
     rep.SMProxy.GetProperty("BlendMode").SetElement(0, MAXIMUM_INTENSITY_BLEND)
     rep.UpdateVTKObjects()
     simple.ColorBy(rep, ("POINTS", name))
