@@ -1,6 +1,7 @@
 #include "pqVesselTouchShowMIPReaction.h"
 
 #include "pqVesselTouchBlendModeNames.h"
+#include "pqVesselTouchOrientationLabels.h"
 #include "pqVesselTouchVolumeCheck.h"
 
 #include "pqActiveObjects.h"
@@ -175,6 +176,11 @@ bool pqVesselTouchShowMIPReaction::showAsMIP(pqPipelineSource* source, pqView* v
   vtkSMPropertyHelper(viewProxy, "UseColorPaletteForBackground", /*quiet=*/true).Set(0);
   vtkSMPropertyHelper(viewProxy, "Background").Set(black, 3);
   setRadiologicalCamera(source, viewProxy);
+  if (source->getProxy()->GetProperty("OutputFrame"))
+  {
+    // Patient images get L/R/A/P/S/I letters at the view's edges (a view annotation).
+    pqVesselTouchOrientationLabels::show(source, qobject_cast<pqRenderView*>(view));
+  }
   viewProxy->UpdateVTKObjects();
   view->resetDisplay();
   view->render();

@@ -1,5 +1,6 @@
 #include "pqVesselTouchTestDriver.h"
 
+#include "pqVesselTouchOrientationLabels.h"
 #include "pqVesselTouchSessionStatus.h"
 
 #include "pqActiveObjects.h"
@@ -495,6 +496,15 @@ QJsonObject pqVesselTouchTestDriver::state() const
     state.insert("camera_view_up", QJsonArray{ up[0], up[1], up[2] });
     const double* focal = camera->GetFocalPoint();
     state.insert("camera_focal_point", QJsonArray{ focal[0], focal[1], focal[2] });
+    if (auto* labels = view->findChild<pqVesselTouchOrientationLabels*>())
+    {
+      QJsonObject letters;
+      letters.insert("top", labels->text(pqVesselTouchOrientationLabels::Top));
+      letters.insert("bottom", labels->text(pqVesselTouchOrientationLabels::Bottom));
+      letters.insert("left", labels->text(pqVesselTouchOrientationLabels::Left));
+      letters.insert("right", labels->text(pqVesselTouchOrientationLabels::Right));
+      state.insert("orientation_labels", letters);
+    }
   }
 
   pqPipelineSource* sessionSource = model->findItem<pqPipelineSource*>("VesselTouchSession");

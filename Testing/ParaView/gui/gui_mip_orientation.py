@@ -2,7 +2,8 @@
 action, in the real ParaView (issue 20 item 10): the MIP is on black from the first frame and in
 the radiological axial view (seen from the feet: the camera below the volume looking toward
 superior, anterior up: view up -y in LPS), the volume is offered by the panel's chooser, and the
-view is not blank. Item 11: the Properties panel's Blend Mode says "Maximum Intensity" (not
+view is not blank; the L/R/A/P/S/I letters are a view annotation with the expected letters at each
+edge and no pipeline source added. Item 11: the Properties panel's Blend Mode says "Maximum Intensity" (not
 "Composite") while the MIP is shown, and a user who picks another blend mode there and then
 "Maximum Intensity" again gets the same MIP back, rendered as before.
 """
@@ -29,6 +30,7 @@ def body(gui, check):
                "simple.SetActiveSource(mra)\n" % DATA)
     check(gui.wait_until(lambda s: "MRA" in s["widgets"].get("volumeCombo", {}).get("items", [])),
           "the MRA is offered as a volume (%r)" % gui.widget("volumeCombo").get("items"))
+    sources_before = sorted(gui.state.get("sources", []))
     gui.run("trigger", "actionVesselTouchShowMIP")
     gui.wait_until(lambda s: s.get("camera_view_up", [0, 0, 0])[1] < -0.99, seconds=10)
     up = gui.state.get("camera_view_up", [0, 0, 0])
@@ -39,12 +41,45 @@ def body(gui, check):
           and abs(position[1] - focal[1]) < 1e-6,
           "seen from the feet: the camera below, looking toward superior (%r -> %r)"
           % (position, focal))
+    # Item 10: patient letters at the view's edges, as a view annotation (no pipeline source).
+    gui.wait_until(lambda s: "orientation_labels" in s, seconds=10)
+    labels = gui.state.get("orientation_labels", {})
+    check(labels == {"top": "A", "bottom": "P", "left": "R", "right": "L"},
+          "radiological axial letters: A up, P down, R left, L right (%r)" % labels)
+    check(sorted(gui.state.get("sources", [])) == sources_before,
+          "the letters add no pipeline source (%r -> %r)" % (sources_before,
+                                                               gui.state.get("sources")))
     png = gui.capture("mra_mip.png")
     rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int) if png else None
     if check(rgb is not None, "the view was captured"):
         check(rgb[2, 2].tolist() == [0, 0, 0], "the background is black (%r)" % rgb[2, 2].tolist())
         check(rgb.max() > 120, "the MIP shows the vessels (max grey %d)" % rgb.max())
+        # The letters are drawn in amber (red high, blue low), unlike the grey MIP, at the middle
+        # of each edge.
+        height, width = rgb.shape[:2]
+        amber = (rgb[:, :, 0] > 180) & (rgb[:, :, 2] < 120)
+        bands = {"top": amber[:height // 10, width * 2 // 5:width * 3 // 5],
+                 "bottom": amber[-height // 10:, width * 2 // 5:width * 3 // 5],
+                 "left": amber[height * 2 // 5:height * 3 // 5, :width // 10],
+                 "right": amber[height * 2 // 5:height * 3 // 5, -width // 10:]}
+        for edge, band in bands.items():
+            check(band.sum() > 20, "a letter is drawn at the %s edge (%d amber pixels)"
+                  % (edge, band.sum()))
+        check(amber.sum() == sum(b.sum() for b in bands.values()),
+              "amber only in the letters (%d pixels)" % amber.sum())
     blend_mode_checks(gui, check, rgb)
+    # The letters follow the camera: seen from the patient's right (up superior), anterior is on
+    # the screen's right.
+    gui.python("from paraview import simple\n"
+               "v = simple.GetActiveView()\n"
+               "f = list(v.CameraFocalPoint)\n"
+               "v.CameraPosition = [f[0] - 500.0, f[1], f[2]]\n"
+               "v.CameraViewUp = [0.0, 0.0, 1.0]\n"
+               "simple.Render(v)\n")
+    expected = {"top": "S", "bottom": "I", "left": "P", "right": "A"}
+    gui.wait_until(lambda s: s.get("orientation_labels") == expected, seconds=10)
+    check(gui.state.get("orientation_labels") == expected,
+          "sagittal from the right: S up, A right (%r)" % gui.state.get("orientation_labels"))
 
 
 def blend_mode(gui):
