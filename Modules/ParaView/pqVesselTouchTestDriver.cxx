@@ -467,6 +467,14 @@ QJsonObject pqVesselTouchTestDriver::state() const
         entry.insert("checked", action->isChecked());
         entry.insert("tooltip", action->toolTip());
         entry.insert("has_icon", !action->icon().isNull());
+        // Shown on its toolbar (not hidden in the toolbar's overflow menu).
+        bool onToolbar = false;
+        for (QToolBar* bar : window->findChildren<QToolBar*>())
+        {
+          QWidget* button = bar->widgetForAction(action);
+          onToolbar = onToolbar || (button && button->isVisible());
+        }
+        entry.insert("on_toolbar", onToolbar);
         actions.insert(action->objectName(), entry);
       }
     }

@@ -30,6 +30,15 @@ def body(gui, check):
                "simple.SetActiveSource(mra)\n" % DATA)
     check(gui.wait_until(lambda s: "MRA" in s["widgets"].get("volumeCombo", {}).get("items", [])),
           "the MRA is offered as a volume (%r)" % gui.widget("volumeCombo").get("items"))
+    # Item 13: the toolbar's buttons are icons with tooltips, all on the toolbar (none in its »
+    # overflow menu), Trace with mouse included.
+    actions = gui.state.get("actions", {})
+    for name in ("actionVesselTouchShowMIP", "actionVesselTouchShowAgent",
+                 "actionVesselTouchTraceWithMouse"):
+        entry = actions.get(name, {})
+        check(entry.get("has_icon") and entry.get("tooltip") and entry.get("on_toolbar"),
+              "%s: an icon, a tooltip, on the toolbar (%r)" % (name, entry))
+    gui.screenshot(os.path.join(gui.work, "window.png"))  # artifact: the toolbar as shown
     sources_before = sorted(gui.state.get("sources", []))
     gui.run("trigger", "actionVesselTouchShowMIP")
     gui.wait_until(lambda s: s.get("camera_view_up", [0, 0, 0])[1] < -0.99, seconds=10)
