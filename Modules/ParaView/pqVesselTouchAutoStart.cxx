@@ -3,11 +3,23 @@
 #include "pqVesselTouchBlendModeNames.h"
 
 #include "pqApplicationCore.h"
+#include "pqCoreUtilities.h"
+#include "pqPipelineBrowserWidget.h"
+#include "pqPipelineSource.h"
 #include "pqRepresentation.h"
 #include "pqServerManagerModel.h"
 
 #include "vtkSMProxy.h"
 #include "vtkSMSettings.h"
+
+#include <QPointer>
+#include <QTimer>
+
+namespace
+{
+// Sources with this annotation are left out of the Pipeline Browser (issue 20, item 13).
+constexpr const char* kHiddenInBrowser = "VesselTouch.HiddenInPipelineBrowser";
+}
 
 pqVesselTouchAutoStart::pqVesselTouchAutoStart(QObject* parentObject)
   : QObject(parentObject)
@@ -38,5 +50,41 @@ void pqVesselTouchAutoStart::startup()
   for (pqRepresentation* representation : model->findItems<pqRepresentation*>())
   {
     pqVesselTouchBlendModeNames::nameMaximumIntensity(representation->getProxy());
+  }
+
+  // The haptic session is driven from the VesselTouch panel, not a data product: it stays out of
+  // the Pipeline Browser (ParaView's annotation filter, non-matching: annotated sources are hidden)
+  // while state files still save and restore it as any registered proxy.
+  QWidget* window = pqCoreUtilities::mainWidget();
+  QPointer<pqPipelineBrowserWidget> browser =
+    window ? window->findChild<pqPipelineBrowserWidget*>() : nullptr;
+  if (browser)
+  {
+    browser->enableAnnotationFilter(kHiddenInBrowser);
+    browser->setAnnotationFilterMatching(false);
+  }
+  auto hide = [browser](pqPipelineSource* source)
+  {
+    vtkSMProxy* proxy = source ? source->getProxy() : nullptr;
+    if (proxy && QLatin1String(proxy->GetXMLName()) == QLatin1String("VesselTouchHapticSession") &&
+        !proxy->HasAnnotation(kHiddenInBrowser))
+    {
+      proxy->SetAnnotation(kHiddenInBrowser, "1");
+      // The browser filtered the row when it was added, before the annotation: filter again.
+      QTimer::singleShot(0,
+        browser.data(),
+        [browser]()
+        {
+          if (browser)
+          {
+            browser->setAnnotationFilterMatching(false);
+          }
+        });
+    }
+  };
+  QObject::connect(model, &pqServerManagerModel::sourceAdded, this, hide);
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    hide(source);
   }
 }

@@ -7,6 +7,7 @@
 #include "pqApplicationCore.h"
 #include "pqCoreUtilities.h"
 #include "pqPVApplicationCore.h"
+#include "pqPipelineBrowserWidget.h"
 #include "pqPipelineSource.h"
 #include "pqPropertyWidget.h"
 #include "pqPythonManager.h"
@@ -488,6 +489,24 @@ QJsonObject pqVesselTouchTestDriver::state() const
     sources.append(source->getSMName());
   }
   state.insert("sources", sources);
+  // The names the Pipeline Browser lists (its filtered model, every level).
+  QJsonArray browserRows;
+  if (auto* browser = window ? window->findChild<pqPipelineBrowserWidget*>() : nullptr)
+  {
+    QAbstractItemModel* rows = browser->getModel();
+    QList<QModelIndex> pending{ QModelIndex() };
+    while (rows && !pending.isEmpty())
+    {
+      const QModelIndex parent = pending.takeFirst();
+      for (int row = 0; row < rows->rowCount(parent); ++row)
+      {
+        const QModelIndex index = rows->index(row, 0, parent);
+        browserRows.append(index.data(Qt::DisplayRole).toString());
+        pending.append(index);
+      }
+    }
+  }
+  state.insert("pipeline_browser", browserRows);
   pqPipelineSource* active = pqActiveObjects::instance().activeSource();
   state.insert("active_source", active ? active->getSMName() : QString());
 

@@ -16,6 +16,19 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gui_driver import run_test  # noqa: E402
 
 
+def hidden_session_checks(gui, check, when):
+    """Issue 20 item 13: the session is a registered source (saved in state files) that the
+    Pipeline Browser does not list, while it lists the other sources."""
+    gui.wait_until(lambda s: "VesselTouchSession" not in s.get("pipeline_browser", []), seconds=5)
+    rows, sources = gui.state.get("pipeline_browser", []), gui.state.get("sources", [])
+    check("VesselTouchSession" in sources and "VesselTouchSession" not in rows,
+          "%s: the session is registered but not in the Pipeline Browser (%r, %r)"
+          % (when, sources, rows))
+    others = [name for name in sources if name != "VesselTouchSession"]
+    check(others and all(name in rows for name in others),
+          "%s: the browser lists the other sources (%r)" % (when, rows))
+
+
 def body(gui, check):
     view = gui.capture("view.png")
     grey = numpy.asarray(Image.open(view).convert("L")).astype(int)
@@ -29,6 +42,7 @@ def body(gui, check):
     gui.run("click", "extractButton")
     gui.run("click", "startButton")
     gui.wait_until(lambda s: s["session"]["running"], seconds=10)
+    hidden_session_checks(gui, check, "before saving")
     saved = {name: gui.widget(name) for name in ("seedLabel", "lowerThreshold", "upperThreshold",
                                                   "volumeCombo", "automaticRange")}
     check("centerline path" in gui.widget("extractMessage").get("text", ""), "extracted")
@@ -66,6 +80,7 @@ def body(gui, check):
           "the panel says the centerlines come from the state (%r)"
           % gui.widget("extractMessage").get("text"))
     check(gui.state["session"]["exists"], "the loaded session is bound")
+    hidden_session_checks(gui, check, "after loading")
     gui.run("click", "startButton")
     check(gui.wait_until(lambda s: s["session"]["running"], seconds=10),
           "the loaded session starts from the panel")
