@@ -1,6 +1,7 @@
 // Runs when the plugin loads into the ParaView GUI: makes VesselTouch's oriented readers the
 // default File > Open choice for NIfTI, NRRD, MetaImage and DICOM files, and names blend mode 1
-// "Maximum Intensity" in every representation's Blend Mode list (pqVesselTouchBlendModeNames).
+// "Maximum Intensity" in every representation's Blend Mode list (pqVesselTouchBlendModeNames) and
+// leaves the haptic session proxy out of the Pipeline Browser (state files still save it).
 #ifndef pqVesselTouchAutoStart_h
 #define pqVesselTouchAutoStart_h
 
