@@ -3,7 +3,7 @@
 find_package(Threads REQUIRED)
 
 # ITK 5.2 from Debian: name the components (the HDF5 IO modules are left out on purpose).
-find_package(ITK 5.2 REQUIRED COMPONENTS
+set(VESSELTOUCH_ITK_COMPONENTS
   ITKCommon
   ITKImageFilterBase
   ITKImageIntensity
@@ -20,6 +20,7 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
   ITKIOGDCM
   ITKGDCM
 )
+find_package(ITK 5.2 REQUIRED COMPONENTS ${VESSELTOUCH_ITK_COMPONENTS})
 # ITK's use file pollutes global include dirs; use the targets/variables explicitly instead.
 set(VESSELTOUCH_ITK_LIBRARIES ${ITK_LIBRARIES})
 set(VESSELTOUCH_ITK_INCLUDE_DIRS ${ITK_INCLUDE_DIRS})

@@ -1,5 +1,7 @@
 #include "vtouchHidPidDevice.h"
 
+#include "vtouchSteadyClock.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,11 +16,6 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 
-double steadyNow_s()
-{
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
 } // namespace
 
 HidPidDevice::HidPidDevice(std::shared_ptr<HidTransport> transport, std::string path)

@@ -1,21 +1,12 @@
 #include "vtouchPointerDevice.h"
 
+#include "vtouchSteadyClock.h"
+
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <thread>
 
 namespace vtouch
 {
-
-namespace
-{
-double steadyNow_s()
-{
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-} // namespace
 
 PointerDevice::PointerDevice(const PointerDeviceParameters& parameters)
   : Parameters(parameters)
@@ -42,23 +33,27 @@ void PointerDevice::setPointerPosition(const Vec2& pointer_Device_mm)
   {
     return;
   }
+  this->publishHost([&](HostInput& in) { in.pointer_mm = pointer_Device_mm; });
+}
+
+template<typename Change>
+void PointerDevice::publishHost(Change change)
+{
   std::lock_guard<std::mutex> lock(this->HostMutex);
-  this->HostSequence.fetch_add(1, std::memory_order_acq_rel); // odd: writing
-  this->PointerX.store(pointer_Device_mm.x, std::memory_order_relaxed);
-  this->PointerY.store(pointer_Device_mm.y, std::memory_order_relaxed);
-  this->HostSequence.fetch_add(1, std::memory_order_release); // even: consistent
+  change(this->HostShadow);
+  this->Host.store(this->HostShadow);
 }
 
 void PointerDevice::setModifierPressed(bool pressed)
 {
-  this->Modifier.store(pressed);
+  this->publishHost([&](HostInput& in) { in.modifier = pressed; });
 }
 
 void PointerDevice::addWheelSteps(int steps)
 {
-  std::lock_guard<std::mutex> lock(this->HostMutex);
-  const double p = this->WheelPressure.load() + steps * this->Parameters.pressurePerWheelStep;
-  this->WheelPressure.store(std::clamp(p, 0.0, 1.0));
+  const double step = this->Parameters.pressurePerWheelStep;
+  this->publishHost([&](HostInput& in)
+    { in.wheelPressure = std::clamp(in.wheelPressure + steps * step, 0.0, 1.0); });
 }
 
 void PointerDevice::setButtons(std::uint32_t buttons)
@@ -124,51 +119,27 @@ std::uint32_t PointerDevice::replayButtons()
 
 void PointerDevice::recenter()
 {
-  this->RecenterRequests.fetch_add(1);
+  this->publishHost([](HostInput& in) { ++in.recenter; });
 }
 
 Vec2 PointerDevice::displayedCursor_Device_mm() const
 {
-  return Vec2{ this->CursorX.load(std::memory_order_relaxed),
-    this->CursorY.load(std::memory_order_relaxed) };
+  return this->Displayed.load().cursor_mm;
 }
 
 Vec3 PointerDevice::displayedForce_Device_N() const
 {
-  return Vec3{ this->ForceX.load(std::memory_order_relaxed),
-    this->ForceY.load(std::memory_order_relaxed),
-    this->ForceZ.load(std::memory_order_relaxed) };
+  return this->Displayed.load().force_N;
 }
 
-PointerDevice::HostInput PointerDevice::loadHost() const
+void PointerDevice::publishDisplayed()
 {
-  HostInput in;
-  // Seqlock read: retry while a write is in progress or happened during the copy. The writer
-  // holds the sequence odd for a handful of stores, so this never spins for long.
-  for (int attempt = 0; attempt < 1000; ++attempt)
-  {
-    const std::uint32_t before = this->HostSequence.load(std::memory_order_acquire);
-    if (before & 1u)
-    {
-      std::this_thread::yield();
-      continue;
-    }
-    // Acquire loads keep the re-check of the sequence after the data (no fence: TSAN-friendly).
-    in.pointer_mm = Vec2{ this->PointerX.load(std::memory_order_acquire),
-      this->PointerY.load(std::memory_order_acquire) };
-    if (this->HostSequence.load(std::memory_order_relaxed) == before)
-    {
-      break;
-    }
-  }
-  in.pressure = this->Modifier.load() ? 1.0 : this->WheelPressure.load();
-  in.recenter = this->RecenterRequests.load();
-  return in;
+  this->Displayed.store(DisplayedState{ this->Cursor_mm, this->Force_N, this->Gain });
 }
 
 DeviceStatus PointerDevice::open()
 {
-  const HostInput in = this->loadHost();
+  const HostInput in = this->Host.load();
   this->Cursor_mm = in.pointer_mm;
   this->LastPointer_mm = in.pointer_mm;
   this->SeenRecenter = in.recenter;
@@ -183,13 +154,9 @@ DeviceStatus PointerDevice::open()
     }
   }
   this->Force_N = Vec3{};
+  this->Gain = 1.0;
   this->Velocity.reset();
-  this->CursorX.store(this->Cursor_mm.x);
-  this->CursorY.store(this->Cursor_mm.y);
-  this->ForceX.store(0.0);
-  this->ForceY.store(0.0);
-  this->ForceZ.store(0.0);
-  this->Gain.store(1.0);
+  this->publishDisplayed();
   this->LastError = "";
   this->Open.store(true);
   return DeviceStatus::Ok;
@@ -198,9 +165,8 @@ DeviceStatus PointerDevice::open()
 void PointerDevice::close()
 {
   this->Open.store(false);
-  this->ForceX.store(0.0);
-  this->ForceY.store(0.0);
-  this->ForceZ.store(0.0);
+  this->Force_N = Vec3{};
+  this->publishDisplayed();
 }
 
 DeviceStatus PointerDevice::read(DeviceState& state)
@@ -210,7 +176,7 @@ DeviceStatus PointerDevice::read(DeviceState& state)
     this->LastError = "pointer device: not open";
     return DeviceStatus::NotOpen;
   }
-  const HostInput in = this->loadHost();
+  const HostInput in = this->Host.load(); // spins only while the GUI stores a few words
   const PointerDeviceParameters& p = this->Parameters;
   if (in.recenter != this->SeenRecenter)
   {
@@ -229,20 +195,19 @@ DeviceStatus PointerDevice::read(DeviceState& state)
       const double along_N = Vec2{ this->Force_N.x, this->Force_N.y }.dot(delta * (1.0 / distance));
       gain = std::clamp(1.0 + p.gainPerNewton_per_N * along_N, p.minimumGain, p.maximumGain);
     }
-    this->Gain.store(gain, std::memory_order_relaxed);
+    this->Gain = gain;
     const Vec2 half = p.workspace_mm * 0.5;
     this->Cursor_mm = this->Cursor_mm + delta * gain;
     this->Cursor_mm.x = std::clamp(this->Cursor_mm.x, -half.x, half.x);
     this->Cursor_mm.y = std::clamp(this->Cursor_mm.y, -half.y, half.y);
   }
   this->LastPointer_mm = in.pointer_mm;
-  this->CursorX.store(this->Cursor_mm.x, std::memory_order_relaxed);
-  this->CursorY.store(this->Cursor_mm.y, std::memory_order_relaxed);
+  this->publishDisplayed();
 
   DeviceState s;
   s.timestamp_s = steadyNow_s();
   s.position_Device_mm = Vec3{ this->Cursor_mm.x, this->Cursor_mm.y, 0.0 };
-  s.pressure = in.pressure;
+  s.pressure = in.modifier ? 1.0 : in.wheelPressure;
   s.buttons = this->replayButtons();
   this->Velocity.add(s.timestamp_s, s.position_Device_mm);
   s.velocity_Device_mm_per_s = this->Velocity.velocity_mm_per_s();
@@ -271,9 +236,7 @@ DeviceStatus PointerDevice::write(const Vec3& force_Device_N)
     f = f * (this->Parameters.maxContinuousForce_N / magnitude);
   }
   this->Force_N = f;
-  this->ForceX.store(f.x, std::memory_order_relaxed);
-  this->ForceY.store(f.y, std::memory_order_relaxed);
-  this->ForceZ.store(f.z, std::memory_order_relaxed);
+  this->publishDisplayed();
   return status;
 }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "vtouchHapticDevice.h"
+#include "vtouchSeqLock.h"
 #include "vtouchVelocityEstimator.h"
 
 #include <atomic>
@@ -69,7 +70,7 @@ public:
   /// The last force written, N, for an on-screen arrow.
   Vec3 displayedForce_Device_N() const;
   /// The control/display gain used at the last read().
-  double currentGain() const { return this->Gain.load(std::memory_order_relaxed); }
+  double currentGain() const { return this->Displayed.load().gain; }
 
   // --- HapticDevice (haptic thread) ---
   DeviceStatus open() override;
@@ -82,13 +83,26 @@ public:
   const char* lastError() const override { return this->LastError; }
 
 private:
+  /// Host -> haptic: what the GUI thread last said about the mouse, published whole.
   struct HostInput
   {
     Vec2 pointer_mm;
-    double pressure = 0.0;
-    std::uint64_t recenter = 0;
+    double wheelPressure = 0.0;
+    bool modifier = false;
+    std::uint64_t recenter = 0; ///< recenter() requests so far
   };
-  HostInput loadHost() const;
+  /// Haptic -> host: what the GUI draws, published whole after each read() and write().
+  struct DisplayedState
+  {
+    Vec2 cursor_mm;
+    Vec3 force_N;
+    double gain = 1.0;
+  };
+  /// Host side: changes the shadow copy under HostMutex and publishes it.
+  template<typename Change>
+  void publishHost(Change change);
+  /// Haptic side: publishes the cursor, force and gain of this tick.
+  void publishDisplayed();
   /// Haptic thread: the button state to report, replaying at most one latched edge per button.
   std::uint32_t replayButtons();
 
@@ -97,22 +111,19 @@ private:
   std::atomic<bool> Open{ false };
   const char* LastError = "";
 
-  // Host -> haptic: a seqlock (one writer at a time under HostMutex; readers never block).
+  // Host -> haptic. Writers are serialized by HostMutex (the SeqLock's single-writer rule); the
+  // haptic thread reads without blocking and never sees a torn pointer position.
   std::mutex HostMutex;
-  std::atomic<std::uint32_t> HostSequence{ 0 };
-  std::atomic<double> PointerX{ 0.0 }, PointerY{ 0.0 };
-  std::atomic<double> WheelPressure{ 0.0 };
-  std::atomic<bool> Modifier{ false };
+  HostInput HostShadow;          // under HostMutex
   std::uint32_t HostButtons = 0; // under HostMutex: the host's last button state (edges)
+  SeqLock<HostInput> Host;
+  // Button edges are counters, not a snapshot: a press and a release between two reads both count.
   std::atomic<std::uint32_t> Presses[kButtonCount] = {};
   std::atomic<std::uint32_t> Releases[kButtonCount] = {};
   std::atomic<std::uint32_t> DeliveredPresses[kButtonCount] = {};
-  std::atomic<std::uint64_t> RecenterRequests{ 0 };
 
-  // Haptic -> host.
-  std::atomic<double> CursorX{ 0.0 }, CursorY{ 0.0 };
-  std::atomic<double> ForceX{ 0.0 }, ForceY{ 0.0 }, ForceZ{ 0.0 };
-  std::atomic<double> Gain{ 1.0 };
+  // Haptic -> host (single writer: whichever thread drives read()/write(), one at a time).
+  SeqLock<DisplayedState> Displayed;
 
   // Haptic thread only.
   Vec2 Cursor_mm;
@@ -121,6 +132,7 @@ private:
   std::uint32_t ReportedButtons = 0;
   std::uint32_t SeenReleases[kButtonCount] = {};
   Vec3 Force_N;
+  double Gain = 1.0;
   VelocityEstimator Velocity;
 };
 

@@ -1,7 +1,8 @@
 #include "vtouchReplayDevice.h"
 
+#include "vtouchSteadyClock.h"
+
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,11 +14,6 @@ namespace vtouch
 
 namespace
 {
-double steadyNow_s()
-{
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
 
 bool parseLine(const std::string& line, ReplaySample& s)
 {

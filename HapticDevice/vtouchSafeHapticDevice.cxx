@@ -1,20 +1,13 @@
 #include "vtouchSafeHapticDevice.h"
 
+#include "vtouchSteadyClock.h"
+
 #include <algorithm>
 #include <chrono>
 #include <utility>
 
 namespace vtouch
 {
-
-namespace
-{
-double steadyNow_s()
-{
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-} // namespace
 
 SafeHapticDevice::SafeHapticDevice(std::unique_ptr<HapticDevice> inner,
   SafeHapticDeviceParameters parameters)

@@ -1,7 +1,8 @@
 #include "vtouchSimulatedDevice.h"
 
+#include "vtouchSteadyClock.h"
+
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -11,11 +12,6 @@ namespace vtouch
 
 namespace
 {
-double steadyNow_s()
-{
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
 
 bool valid(const SimulatedDeviceParameters& p)
 {

@@ -118,6 +118,7 @@ void HapticSession::rebuild()
   }
   this->Exchange.publish(
     this->Builder.build(this->Topology, this->Camera, this->Exchange.takeRecyclable()));
+  this->ViewModelBuilds.fetch_add(1);
 }
 
 void HapticSession::setDevice(std::shared_ptr<HapticDevice> device)

@@ -71,6 +71,9 @@ public:
   /// 3D arc length of the dz/dl stencil, mm (rebuilds the topology). Default 1 mm.
   void setSlopeWindow_mm(double window_mm);
   double slopeWindow_mm() const;
+  /// View models built and published so far (one per camera, capture radius, stencil or skeleton
+  /// change that has both a skeleton and a camera).
+  std::uint64_t viewModelBuilds() const { return this->ViewModelBuilds.load(); }
   /// The newest published view model (null before skeleton + camera).
   std::shared_ptr<const ViewModel> viewModel() const { return this->Exchange.current(); }
 
@@ -102,6 +105,8 @@ public:
   bool isRunning() const { return this->Loop.running(); }
   LoopStatisticsSummary statistics() const { return this->Loop.statistics(); }
   std::string schedulerNotice() const { return this->Loop.schedulerNotice(); }
+  /// True when the running loop thread got real-time scheduling (SCHED_FIFO).
+  bool realtimeGranted() const { return this->Loop.realtimeGranted(); }
 
   // --- offline (deterministic) ---
   /// Steps tick() at `rate_Hz` for `duration_s` of simulated time, advancing the simulated device
@@ -155,6 +160,7 @@ private:
   double SlopeWindow_mm = 1.0;
   ViewModelBuilder Builder;
   ViewModelExchange Exchange;
+  std::atomic<std::uint64_t> ViewModelBuilds{ 0 };
   HapticParameters ControlParameters;
   SeqLock<HapticParameters> PublishedParameters;
   SeqLock<AgentState> Published;

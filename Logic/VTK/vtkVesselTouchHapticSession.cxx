@@ -2,13 +2,12 @@
 
 #include "vtouchPolyDataToQSkeleton.h"
 
+#include "vtouchAgentStateLayout.h"
+#include "vtouchDeviceFactory.h"
 #include "vtouchHapticSession.h"
-#include "vtouchHidPidDevice.h"
-#include "vtouchHidapiTransport.h"
 #include "vtouchPointerDevice.h"
-#include "vtouchReplayDevice.h"
 #include "vtouchSafeHapticDevice.h"
-#include "vtouchSimulatedDevice.h"
+#include "vtouchSweepHandTrack.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
@@ -36,39 +35,6 @@ constexpr int kMaxLogEntries = 2000000;
 
 namespace
 {
-/// Timed hand samples (device mm), shared with the hand script's lambda (read-only once set).
-struct HandTrack
-{
-  std::vector<double> time_s;
-  std::vector<vtouch::Vec2> position_mm;
-
-  /// Linear interpolation, held outside the samples; velocity of the current segment.
-  void at(double t, vtouch::Vec2& p, vtouch::Vec2& v) const
-  {
-    v = {};
-    if (time_s.empty())
-    {
-      p = {};
-      return;
-    }
-    if (t <= time_s.front() || time_s.size() == 1)
-    {
-      p = position_mm.front();
-      return;
-    }
-    if (t >= time_s.back())
-    {
-      p = position_mm.back();
-      return;
-    }
-    const std::size_t i =
-      static_cast<std::size_t>(std::upper_bound(time_s.begin(), time_s.end(), t) - time_s.begin());
-    const double dt = time_s[i] - time_s[i - 1];
-    v = (position_mm[i] - position_mm[i - 1]) * (1.0 / dt);
-    p = position_mm[i - 1] + v * (t - time_s[i - 1]);
-  }
-};
-
 /// Row-major (vtkMatrix4x4) -> column-major (vtouch::Mat4): the transpose.
 vtouch::Mat4 columnMajor(const double rowMajor[16])
 {
@@ -107,7 +73,7 @@ public:
   double Radius_mm = 0.0;
   vtouch::HostCamera Camera;
   bool HasCamera = false;
-  std::shared_ptr<HandTrack> Track = std::make_shared<HandTrack>();
+  std::shared_ptr<vtouch::HandTrack> Track = std::make_shared<vtouch::HandTrack>();
   vtouch::PointerDevice* Pointer = nullptr; // inside the session's SafeHapticDevice
   double OfflineStart_s = 0.0;
   std::string LastError;
@@ -149,13 +115,15 @@ void vtkVesselTouchHapticSession::Fail(const std::string& message)
   vtkErrorMacro(<< message);
 }
 
-void vtkVesselTouchHapticSession::Modified()
+void vtkVesselTouchHapticSession::ApplyProperties()
 {
-  this->Superclass::Modified();
-  if (this->Internals) // not during construction
+  const vtkMTimeType now = this->GetMTime();
+  if (now <= this->AppliedTime)
   {
-    this->PushParameters();
+    return; // nothing changed since the last push
   }
+  this->AppliedTime = now;
+  this->PushParameters();
 }
 
 void vtkVesselTouchHapticSession::PushParameters()
@@ -284,15 +252,11 @@ void vtkVesselTouchHapticSession::AddHandSample(double time_s, double x_mm, doub
     this->Fail("AddHandSample: stop the session first");
     return;
   }
-  HandTrack& track = *this->Internals->Track;
-  if (!std::isfinite(time_s) || !std::isfinite(x_mm) || !std::isfinite(y_mm) ||
-      (!track.time_s.empty() && time_s <= track.time_s.back()))
+  if (!this->Internals->Track->add(time_s, { x_mm, y_mm }))
   {
     this->Fail("AddHandSample: samples need finite values and increasing times");
     return;
   }
-  track.time_s.push_back(time_s);
-  track.position_mm.push_back({ x_mm, y_mm });
   this->Modified();
 }
 
@@ -304,13 +268,13 @@ void vtkVesselTouchHapticSession::ClearHandSamples()
     return;
   }
   // A new track: a simulated device of an earlier run may still hold the old one.
-  this->Internals->Track = std::make_shared<HandTrack>();
+  this->Internals->Track = std::make_shared<vtouch::HandTrack>();
   this->Modified();
 }
 
 int vtkVesselTouchHapticSession::GetNumberOfHandSamples() const
 {
-  return static_cast<int>(this->Internals->Track->time_s.size());
+  return static_cast<int>(this->Internals->Track->size());
 }
 
 void vtkVesselTouchHapticSession::SetPointerPosition(double x_mm, double y_mm)
@@ -404,165 +368,71 @@ bool vtkVesselTouchHapticSession::BuildDevice(bool offline)
   vtkInternals& in = *this->Internals;
   in.Pointer = nullptr;
   in.Session.setDevice(nullptr);
-  std::unique_ptr<vtouch::HapticDevice> inner;
-  vtouch::SimulatedDevice* simulated = nullptr;
-  switch (this->DeviceType)
+  vtouch::DeviceRequest request;
+  request.kind = static_cast<vtouch::DeviceKind>(this->DeviceType);
+  request.offline = offline;
+  request.maxForce_N = this->MaxForce;
+  request.simulatedMass_kg = this->SimulatedMass;
+  request.simulatedDamping_N_s_per_m = this->SimulatedDamping;
+  request.simulatedMaxForce_N = this->SimulatedMaxForce;
+  request.handStiffness_N_per_m = this->HandStiffness;
+  request.handDamping_N_s_per_m = this->HandDamping;
+  request.handPressure = this->HandPressure;
+  request.replayFile = this->ReplayFileName ? this->ReplayFileName : "";
+  request.hidPath = this->HidPath ? this->HidPath : "";
+
+  // The simulated hand's script and where the cursor starts (the screen centre by default).
+  vtouch::Vec2 cursor{ this->ViewportSize[0] * 0.5, this->ViewportSize[1] * 0.5 };
+  if (this->DeviceType == SIMULATED && this->HandScript == HAND_SWEEP)
   {
-    case SIMULATED:
+    if (!in.HasSkeleton)
     {
-      vtouch::SimulatedDeviceParameters dp;
-      dp.clock = offline ? vtouch::SimulatedDeviceParameters::Clock::Manual
-                         : vtouch::SimulatedDeviceParameters::Clock::RealTime;
-      dp.mass_kg = this->SimulatedMass;
-      dp.damping_N_s_per_m = this->SimulatedDamping;
-      dp.maxContinuousForce_N = this->SimulatedMaxForce;
-      vtouch::HandScript hand;
-      hand.drive = vtouch::HandScript::Drive::Position;
-      hand.handStiffness_N_per_m = this->HandStiffness;
-      hand.handDamping_N_s_per_m = this->HandDamping;
-      const double pressure = this->HandPressure;
-      const double pxPerMm = this->PixelsPerDeviceMm * this->Zoom;
-      vtouch::Vec2 cursor{ this->ViewportSize[0] * 0.5, this->ViewportSize[1] * 0.5 };
-      if (this->HandScript == HAND_SWEEP)
-      {
-        if (!in.HasSkeleton || this->SweepPath < 0 ||
-            this->SweepPath >= static_cast<int>(in.Skeleton.paths.size()) || !(pxPerMm > 0.0))
-        {
-          this->Fail("the sweep needs a centerline and a valid SweepPath");
-          return false;
-        }
-        // The hand follows the path's screen projection: hand mm = (screen - start) / pxPerMm,
-        // starting 20 mm to the right and reaching the first point in 0.3 s.
-        auto track = std::make_shared<HandTrack>();
-        const auto& points = in.Skeleton.paths[static_cast<std::size_t>(this->SweepPath)].points;
-        std::vector<vtouch::Vec2> screen;
-        for (const vtouch::SkeletonPoint& q : points)
-        {
-          vtouch::Vec2 s;
-          if (in.Camera.eyeToScreen(in.Camera.worldToEye(q.position_World_mm), s))
-          {
-            screen.push_back(s);
-          }
-        }
-        if (screen.size() < 2)
-        {
-          this->Fail("the sweep path is not in front of the camera");
-          return false;
-        }
-        const double speed = std::max(this->SweepSpeed, 1e-3);
-        double t = 0.3;
-        track->time_s.push_back(0.0);
-        track->position_mm.push_back({ 20.0, 0.0 });
-        track->time_s.push_back(t);
-        track->position_mm.push_back({ 0.0, 0.0 });
-        for (std::size_t i = 1; i < screen.size(); ++i)
-        {
-          const double step = (screen[i] - screen[i - 1]).norm() / pxPerMm;
-          if (step <= 1e-9)
-          {
-            continue;
-          }
-          t += step / speed;
-          track->time_s.push_back(t);
-          track->position_mm.push_back((screen[i] - screen[0]) * (1.0 / pxPerMm));
-        }
-        cursor = screen[0] + vtouch::Vec2{ 20.0 * pxPerMm, 0.0 };
-        dp.initialPosition_Device_mm = { 20.0, 0.0 };
-        hand.trajectory = [track, pressure](double time, vtouch::HandSample& h)
-        {
-          track->at(time, h.position_Device_mm, h.velocity_Device_mm_per_s);
-          h.pressure = pressure;
-        };
-      }
-      else if (this->HandScript == HAND_TRAJECTORY)
-      {
-        std::shared_ptr<const HandTrack> track = in.Track;
-        if (track->time_s.empty())
-        {
-          this->Fail("the hand trajectory has no samples (AddHandSample)");
-          return false;
-        }
-        dp.initialPosition_Device_mm = track->position_mm.front();
-        if (this->InitialCursor[0] >= 0.0 && this->InitialCursor[1] >= 0.0)
-        {
-          cursor = { this->InitialCursor[0], this->InitialCursor[1] };
-        }
-        hand.trajectory = [track, pressure](double time, vtouch::HandSample& h)
-        {
-          track->at(time, h.position_Device_mm, h.velocity_Device_mm_per_s);
-          h.pressure = pressure;
-        };
-      }
-      auto sim = std::make_unique<vtouch::SimulatedDevice>(dp);
-      sim->setHandScript(hand);
-      simulated = sim.get();
-      inner = std::move(sim);
-      in.Session.pipeline().reset();
-      in.Session.pipeline().setCursor_px(cursor);
-      break;
-    }
-    case POINTER:
-    {
-      auto pointer = std::make_unique<vtouch::PointerDevice>();
-      in.Pointer = pointer.get();
-      inner = std::move(pointer);
-      break;
-    }
-    case REPLAY:
-    {
-      vtouch::ReplayDeviceParameters rp;
-      rp.clock = vtouch::ReplayDeviceParameters::Clock::RealTime;
-      auto replay = std::make_unique<vtouch::ReplayDevice>(rp);
-      std::string error;
-      if (!this->ReplayFileName || !replay->loadCsv(this->ReplayFileName, error))
-      {
-        this->Fail(std::string("replay device: ") +
-                   (this->ReplayFileName ? error : std::string("no ReplayFileName")));
-        return false;
-      }
-      inner = std::move(replay);
-      break;
-    }
-    case HID:
-    {
-      if (!this->HidPath || !*this->HidPath)
-      {
-        this->Fail("HID device: no HidPath");
-        return false;
-      }
-      inner = std::make_unique<vtouch::HidPidDevice>(
-        std::make_shared<vtouch::HidapiTransport>(), this->HidPath);
-      break;
-    }
-    default:
-      this->Fail("unknown DeviceType");
+      this->Fail("the sweep needs a centerline and a valid SweepPath");
       return false;
+    }
+    vtouch::SweepHandTrack sweep = vtouch::makeSweepHandTrack(in.Skeleton,
+      in.Camera,
+      this->SweepPath,
+      this->PixelsPerDeviceMm * this->Zoom,
+      this->SweepSpeed);
+    if (!sweep.ok())
+    {
+      this->Fail(sweep.error);
+      return false;
+    }
+    request.hand = std::make_shared<const vtouch::HandTrack>(std::move(sweep.track));
+    cursor = sweep.startCursor_px;
   }
-  if (this->DeviceType != SIMULATED)
+  else if (this->DeviceType == SIMULATED && this->HandScript == HAND_TRAJECTORY)
   {
-    in.Session.pipeline().reset(); // a fresh start: exploring, cursor re-centred
+    if (in.Track->empty())
+    {
+      this->Fail("the hand trajectory has no samples (AddHandSample)");
+      return false;
+    }
+    request.hand = in.Track;
+    if (this->InitialCursor[0] >= 0.0 && this->InitialCursor[1] >= 0.0)
+    {
+      cursor = { this->InitialCursor[0], this->InitialCursor[1] };
+    }
   }
-  vtouch::SafeHapticDeviceParameters sp;
-  sp.filter.maxForce_N = this->MaxForce;
-  if (offline)
+
+  vtouch::BuiltDevice built = vtouch::buildDevice(request);
+  if (!built.device)
   {
-    // Simulated time drives the slew limit; no watchdog thread between offline runs.
-    sp.watchdogThread = false;
-    sp.watchdogTimeout_s = 0.0;
-    sp.autoReopen = false;
-    sp.clock_s = [simulated]() { return simulated->time_s(); };
-  }
-  auto device = std::make_shared<vtouch::SafeHapticDevice>(std::move(inner), sp);
-  if (device->open() != vtouch::DeviceStatus::Ok)
-  {
-    this->Fail(std::string("the device did not open: ") + device->lastError());
-    in.Pointer = nullptr;
+    this->Fail(built.error);
     return false;
   }
+  in.Session.pipeline().reset(); // a fresh start: exploring
+  if (this->DeviceType == SIMULATED)
+  {
+    in.Session.pipeline().setCursor_px(cursor);
+  }
+  in.Pointer = built.pointer;
   vtouch::ForceSafetyParameters safety;
   safety.maxForce_N = this->MaxForce;
   in.Session.setSafetyParameters(safety);
-  in.Session.setDevice(device);
+  in.Session.setDevice(built.device);
   in.Session.clearFault();
   return true;
 }
@@ -589,6 +459,7 @@ bool vtkVesselTouchHapticSession::Start()
   {
     return true;
   }
+  this->ApplyProperties();
   if (!this->UpdateSkeleton(this->UpdateInput()) || !in.HasCamera)
   {
     if (!in.HasCamera)
@@ -649,6 +520,7 @@ bool vtkVesselTouchHapticSession::RunOffline()
 bool vtkVesselTouchHapticSession::RunOffline(double duration_s, double rate_Hz)
 {
   vtkInternals& in = *this->Internals;
+  this->ApplyProperties();
   if (in.Session.isRunning())
   {
     this->Fail("RunOffline: stop the real-time session first");
@@ -728,34 +600,57 @@ double* vtkVesselTouchHapticSession::GetStatistics()
   return this->Statistics;
 }
 
+// GetAgentState's VTK_SIZEHINT and the AgentState member are 23 values: the layout's size.
+static_assert(vtouch::AgentFieldCount == 23, "update GetAgentState's size hint and member");
+
 double* vtkVesselTouchHapticSession::GetAgentState()
 {
   const vtouch::AgentState a = this->Internals->Session.agentState();
-  const double values[23] = { a.time_s,
-    static_cast<double>(a.tick),
-    static_cast<double>(a.state),
-    static_cast<double>(a.forceLaw),
-    static_cast<double>(a.path),
-    static_cast<double>(a.point),
-    a.cursor_px.x,
-    a.cursor_px.y,
-    a.position_World_mm.x,
-    a.position_World_mm.y,
-    a.position_World_mm.z,
-    a.tangent_World.x,
-    a.tangent_World.y,
-    a.tangent_World.z,
-    static_cast<double>(a.directionOfTravel),
-    a.coneRoll_rad, // the cone's roll: RMF + integral of torsion (vtouch::AgentFrame)
-    a.zoneGain_N,
-    a.force_N.x,
-    a.force_N.y,
-    a.targetForce_N.x,
-    a.targetForce_N.y,
-    a.hand_Device_mm.x,
-    a.hand_Device_mm.y };
-  std::copy(values, values + 23, this->AgentState);
+  double* v = this->AgentState;
+  auto put2 = [v](int at, const vtouch::Vec2& p)
+  {
+    v[at] = p.x;
+    v[at + 1] = p.y;
+  };
+  auto put3 = [v](int at, const vtouch::Vec3& p)
+  {
+    v[at] = p.x;
+    v[at + 1] = p.y;
+    v[at + 2] = p.z;
+  };
+  v[vtouch::AgentFieldTime_s] = a.time_s;
+  v[vtouch::AgentFieldTick] = static_cast<double>(a.tick);
+  v[vtouch::AgentFieldState] = static_cast<double>(a.state);
+  v[vtouch::AgentFieldForceLaw] = static_cast<double>(a.forceLaw);
+  v[vtouch::AgentFieldPath] = static_cast<double>(a.path);
+  v[vtouch::AgentFieldPoint] = static_cast<double>(a.point);
+  put2(vtouch::AgentFieldCursor_px, a.cursor_px);
+  put3(vtouch::AgentFieldPosition_World_mm, a.position_World_mm);
+  put3(vtouch::AgentFieldTangent_World, a.tangent_World);
+  v[vtouch::AgentFieldDirection] = static_cast<double>(a.directionOfTravel);
+  v[vtouch::AgentFieldConeRoll_rad] =
+    a.coneRoll_rad; // RMF + integral of torsion (vtouch::AgentFrame)
+  v[vtouch::AgentFieldZoneGain_N] = a.zoneGain_N;
+  put2(vtouch::AgentFieldForce_N, a.force_N);
+  put2(vtouch::AgentFieldTargetForce_N, a.targetForce_N);
+  put2(vtouch::AgentFieldHand_Device_mm, a.hand_Device_mm);
   return this->AgentState;
+}
+
+const char* vtkVesselTouchHapticSession::GetAgentStateLayout()
+{
+  static const std::string layout = vtouch::agentStateLayoutText();
+  return layout.c_str();
+}
+
+int vtkVesselTouchHapticSession::GetRealTimeScheduling()
+{
+  return this->Internals->Session.isRunning() && this->Internals->Session.realtimeGranted() ? 1 : 0;
+}
+
+vtkIdType vtkVesselTouchHapticSession::GetViewModelBuilds()
+{
+  return static_cast<vtkIdType>(this->Internals->Session.viewModelBuilds());
 }
 
 double* vtkVesselTouchHapticSession::GetDeviceForce()

@@ -233,11 +233,18 @@ public:
   /// nominal rate, achieved rate (Hz), ticks, overruns, skipped deadlines, period error p50, p99,
   /// p99.9, max (us), tick cost p50, p99, max (us).
   double* GetStatistics() VTK_SIZEHINT(12);
-  /// time (s), tick, state (0 exploring, 1 tracing), force law, path, point, cursor x y (px),
-  /// position x y z (world mm), tangent x y z, direction of travel, cone roll (rad: the roll to
-  /// pass vtouch::agentConeMatrix, a rotation-minimising frame rolled by the integrated torsion),
-  /// k(P) (N), force x y (N), target force x y (N), hand x y (device mm).
+  /// The agent as the haptic thread last published it, laid out by vtouchAgentStateLayout.h
+  /// (vtouch::AgentStateIndex): time (s), tick, state (0 exploring, 1 tracing), force law, path,
+  /// point, cursor x y (px), position x y z (world mm), tangent x y z, direction of travel, cone
+  /// roll (rad: a rotation-minimising frame rolled by the integrated torsion), k(P) (N), force x y
+  /// (N), target force x y (N), hand x y (device mm).
   double* GetAgentState() VTK_SIZEHINT(23);
+  /// The same layout as text for scripting hosts: "name:components:i|f" per field, in order.
+  const char* GetAgentStateLayout();
+  /// 1 when the running loop got real-time scheduling (SCHED_FIFO), else 0.
+  int GetRealTimeScheduling();
+  /// View models built so far (each camera, capture-radius, stencil or centerline change).
+  vtkIdType GetViewModelBuilds();
   /// The force last sent to the device, x y z (N, device frame, after the safety layer); zero
   /// when no device is open, and after Stop() (which zeroes the force before closing).
   double* GetDeviceForce() VTK_SIZEHINT(3);
@@ -250,9 +257,13 @@ public:
   const char* GetFaultMessage();
   const char* GetSchedulerNotice();
 
-  /// Pushes every parameter (and a changed camera) to the session: a running session feels it at
-  /// the next tick.
-  void Modified() override;
+  /// Publishes every parameter, and the camera when it changed, to the haptic session if any
+  /// property changed since the last call: a running session feels them at its next tick, and
+  /// a camera change rebuilds the view model once. ParaView calls it once after each push of the
+  /// proxy's properties (the XML's post_push), so a camera whose eight properties change together
+  /// reaches the haptic thread whole. Start() and RunOffline() call it too; a C++ host that sets
+  /// properties on a running session calls it after the set.
+  void ApplyProperties();
 
 protected:
   vtkVesselTouchHapticSession();
@@ -274,6 +285,7 @@ private:
   bool UpdateSkeleton(vtkDataObject* data);
   bool ApplyCamera();
   void PushParameters();
+  vtkMTimeType AppliedTime = 0;
   bool BuildDevice(bool offline);
   void Fail(const std::string& message);
   bool ReserveLog(int entries);

@@ -15,6 +15,7 @@
 #include "vtkWeakPointer.h"
 
 #include "vtouchAgentPose.h"
+#include "vtouchAgentStateLayout.h"
 
 #include <QElapsedTimer>
 #include <QFile>
@@ -36,17 +37,18 @@ constexpr qint64 kRenderRetry_ms = 1000;
 /// Longest force arrow, px.
 constexpr double kMaxArrow_px = 160.0;
 
-// Indices into vtkVesselTouchHapticSession::GetAgentState().
+// Short names for the fields of vtkVesselTouchHapticSession::GetAgentState() used here; the
+// layout itself is vtouchAgentStateLayout.h's.
 enum AgentField
 {
-  Tick = 1,
-  State = 2,
-  CursorX = 6,
-  PositionX = 8,
-  TangentX = 11,
-  Direction = 14,
-  Torsion = 15,
-  ForceX = 17
+  Tick = vtouch::AgentFieldTick,
+  State = vtouch::AgentFieldState,
+  CursorX = vtouch::AgentFieldCursor_px,
+  PositionX = vtouch::AgentFieldPosition_World_mm,
+  TangentX = vtouch::AgentFieldTangent_World,
+  Direction = vtouch::AgentFieldDirection,
+  Torsion = vtouch::AgentFieldConeRoll_rad,
+  ForceX = vtouch::AgentFieldForce_N
 };
 } // namespace
 
@@ -425,6 +427,7 @@ void pqVesselTouchAgentDisplay::writeReportIfRequested()
     report.insert("cursor_x_px", a[CursorX]);
     report.insert("cursor_y_px", a[CursorX + 1]);
     report.insert("running", session->IsRunning());
+    report.insert("view_model_builds", static_cast<double>(session->GetViewModelBuilds()));
     report.insert("device_type", session->GetDeviceType());
   }
   report.insert("agent_x_px", this->LastAgent_px[0]);

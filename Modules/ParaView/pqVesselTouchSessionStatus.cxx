@@ -1,5 +1,7 @@
 #include "pqVesselTouchSessionStatus.h"
 
+#include "vtouchAgentStateLayout.h"
+
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 
@@ -9,12 +11,12 @@
 
 namespace
 {
-// Indices in AgentStateInfo (vtkVesselTouchHapticSession::GetAgentState).
-constexpr unsigned kAgentState = 2;
-constexpr unsigned kAgentPath = 4;
-constexpr unsigned kAgentPoint = 5;
-constexpr unsigned kAgentPositionX = 8;
-constexpr unsigned kAgentForceX = 17;
+// Indices in AgentStateInfo: the layout of vtouchAgentStateLayout.h.
+constexpr unsigned kAgentState = vtouch::AgentFieldState;
+constexpr unsigned kAgentPath = vtouch::AgentFieldPath;
+constexpr unsigned kAgentPoint = vtouch::AgentFieldPoint;
+constexpr unsigned kAgentPositionX = vtouch::AgentFieldPosition_World_mm;
+constexpr unsigned kAgentForceX = vtouch::AgentFieldForce_N;
 
 QString stringInfo(vtkSMProxy* session, const char* name)
 {
@@ -52,9 +54,7 @@ pqVesselTouchSessionStatus pqVesselTouchSessionStatus::read(vtkSMProxy* session)
   loop.periodErrorMax_us = stats.GetAsDouble(8);
   loop.tickCostP50_us = stats.GetAsDouble(9);
   loop.tickCostMax_us = stats.GetAsDouble(11);
-  loop.realtimeScheduling =
-    status.schedulerNotice.contains(QLatin1String("SCHED_FIFO")) &&
-    !status.schedulerNotice.contains(QLatin1String("not"), Qt::CaseInsensitive);
+  loop.realtimeScheduling = vtkSMPropertyHelper(session, "RealTimeSchedulingInfo").GetAsInt() != 0;
 
   vtkSMPropertyHelper agent(session, "AgentStateInfo");
   loop.tracing = agent.GetAsDouble(kAgentState) > 0.5;

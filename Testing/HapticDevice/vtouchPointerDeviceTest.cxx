@@ -212,4 +212,37 @@ TEST(PointerDevice, StaysConsistentWhenHostFeedsFromAnotherThread)
   EXPECT_EQ(device.deliveredPressCount(0), device.pressCount(0));
 }
 
+TEST(PointerDevice, GivesTheGuiAnUntornCursorAndForceWhileTheTickWrites)
+{
+  PointerDevice device;
+  ASSERT_EQ(device.open(), DeviceStatus::Ok);
+  std::atomic<bool> stop{ false };
+  std::atomic<int> torn{ 0 };
+  // The GUI thread draws the cursor and the force arrow while the haptic thread updates them.
+  std::thread gui(
+    [&]()
+    {
+      while (!stop)
+      {
+        const Vec2 c = device.displayedCursor_Device_mm();
+        const Vec3 f = device.displayedForce_Device_N();
+        if (c.x != c.y || f.x != f.y)
+        {
+          ++torn;
+        }
+      }
+    });
+  DeviceState s;
+  for (int i = 0; i < 20000; ++i)
+  {
+    const double v = 0.001 * (i % 1000);
+    device.setPointerPosition(Vec2{ v, v });
+    device.read(s);
+    device.write(Vec3{ 1e-3 * v, 1e-3 * v, 0.0 }); // tiny: the gain stays ~1 along x = y
+  }
+  stop = true;
+  gui.join();
+  EXPECT_EQ(torn.load(), 0);
+}
+
 } // namespace

@@ -49,6 +49,11 @@ _LOG_COLUMNS = {"Time": "time", "Hand": "hand", "Cursor": "cursor", "State": "st
                 "TargetForce": "target_force", "Force": "force"}
 
 
+def _first(value):
+    """An information property's single value (servermanager gives a scalar or a list)."""
+    return value[0] if isinstance(value, (list, tuple)) else value
+
+
 def _key(name):
     return "".join(c for c in str(name).lower() if c.isalnum())
 
@@ -113,8 +118,20 @@ class HapticSession(object):
 
     # --- helpers ---------------------------------------------------------------------------
     def _set(self, **properties):
+        """Sets several properties and pushes them in ONE UpdateVTKObjects, so the session's
+        ApplyProperties (the proxy's post_push) publishes them to the haptic thread together:
+        a camera's position, focal point and view up never arrive apart."""
+        smproxy = self.proxy.SMProxy
         for name, value in properties.items():
-            self.proxy.SetPropertyWithName(name, value)
+            prop = smproxy.GetProperty(name)
+            if prop is None or not hasattr(prop, "SetElement") or isinstance(value, str):
+                self.proxy.SetPropertyWithName(name, value)  # inputs, strings: as ParaView does
+                continue
+            values = list(value) if isinstance(value, (list, tuple)) else [value]
+            prop.SetNumberOfElements(len(values))
+            for i, v in enumerate(values):
+                prop.SetElement(i, v)
+        smproxy.UpdateVTKObjects()
 
     def _info(self, name):
         self.proxy.UpdatePropertyInformation()
@@ -404,11 +421,15 @@ class HapticSession(object):
         ``torsion_angle`` is the cone's roll about its apex: a rotation-minimising frame carried
         along the agent's path, rolled by the integrated torsion (Yi & Hayward section 7)."""
         v = list(self._info("AgentStateInfo"))
-        return {"time": v[0], "tick": int(v[1]), "state": int(v[2]), "force_law": int(v[3]),
-                "path": int(v[4]), "point": int(v[5]), "cursor": v[6:8], "position": v[8:11],
-                "tangent": v[11:14], "direction": int(v[14]), "torsion_angle": v[15],
-                "zone_gain": v[16], "force": v[17:19], "target_force": v[19:21],
-                "hand": v[21:23]}
+        state, at = {}, 0
+        # The layout comes from the session (vtouchAgentStateLayout.h), not from a copy here.
+        for field in str(self._info("AgentStateLayoutInfo")).split():
+            name, components, kind = field.split(":")
+            n = int(components)
+            values = [int(x) for x in v[at:at + n]] if kind == "i" else v[at:at + n]
+            state[name] = values[0] if n == 1 else values
+            at += n
+        return state
 
     def GetStatus(self):
         """running, fault code and text, log length, dropped log entries, skeleton size."""
@@ -416,7 +437,8 @@ class HapticSession(object):
         return {"running": bool(v[0]), "fault": int(v[1]), "log_entries": int(v[2]),
                 "dropped_log_entries": int(v[3]), "paths": int(v[4]), "points": int(v[5]),
                 "fault_text": self._info("FaultInfo"),
-                "scheduler": self._info("SchedulerNoticeInfo")}
+                "scheduler": self._info("SchedulerNoticeInfo"),
+                "realtime_scheduling": _first(self._info("RealTimeSchedulingInfo")) == 1}
 
     def GetLastError(self):
         """The last error of the session ("" when none)."""

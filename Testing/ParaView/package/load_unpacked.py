@@ -53,6 +53,12 @@ with tempfile.TemporaryDirectory(prefix="vesseltouch-package-") as tmp:
     missing = [p for p in REQUIRED if not glob.glob(os.path.join(root, p))]
     if missing:
         sys.exit("the package lacks %s" % ", ".join(missing))
+    # The development install (headers, static libraries, CMake package) is for other host
+    # adapters: it is installed with --component Development only, never into the download.
+    development = [p for p in ("include", "lib/cmake", "lib/libVesselTouch*.a")
+                   if glob.glob(os.path.join(root, p))]
+    if development:
+        sys.exit("the download carries the development install: %s" % ", ".join(development))
     if not plugin_embeds_python(plugins[0]):
         sys.exit("the packaged plugin does not embed the vesseltouch Python package")
 

@@ -1,0 +1,32 @@
+# The layers' link rule, checked at configure time (issue 18, item 3): the libraries that only need
+# vectors, the SeqLock or the clock link VesselTouchCore, never the device library. A link that
+# crosses the rule stops the configure with the chain that pulled the device library in.
+function(_vtouch_link_closure target out)
+  set(_seen)
+  set(_todo ${target})
+  while(_todo)
+    list(POP_FRONT _todo _t)
+    if(NOT TARGET ${_t} OR _t IN_LIST _seen)
+      continue()
+    endif()
+    list(APPEND _seen ${_t})
+    get_target_property(_links ${_t} INTERFACE_LINK_LIBRARIES)
+    if(_links)
+      foreach(_l IN LISTS _links)
+        string(REGEX REPLACE "^\\$<LINK_ONLY:(.*)>$" "\\1" _l "${_l}")
+        list(APPEND _todo ${_l})
+      endforeach()
+    endif()
+  endwhile()
+  set(${out} ${_seen} PARENT_SCOPE)
+endfunction()
+
+foreach(_layer VesselTouchModel VesselTouchView VesselTouchPhantom VesselTouchSkeleton VesselTouchIO)
+  if(TARGET ${_layer})
+    _vtouch_link_closure(${_layer} _closure)
+    if(VesselTouchHapticDevice IN_LIST _closure)
+      message(FATAL_ERROR "${_layer} links the device library (VesselTouchHapticDevice) through: "
+        "${_closure}. Link VesselTouchCore for vectors, SeqLock and the clock.")
+    endif()
+  endif()
+endforeach()
