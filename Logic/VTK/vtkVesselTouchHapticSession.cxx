@@ -79,6 +79,7 @@ public:
   std::string LastError;
   std::string FaultText;
   std::string SchedulerText;
+  std::string DeviceName;
 };
 
 vtkVesselTouchHapticSession::vtkVesselTouchHapticSession()
@@ -666,6 +667,40 @@ double* vtkVesselTouchHapticSession::GetDeviceForce()
   this->DeviceForce[1] = force_N.y;
   this->DeviceForce[2] = force_N.z;
   return this->DeviceForce;
+}
+
+double* vtkVesselTouchHapticSession::GetDeviceCapabilities()
+{
+  std::fill(std::begin(this->DeviceCapabilities), std::end(this->DeviceCapabilities), 0.0);
+  auto device = this->Internals->Session.device();
+  if (!device || !device->isOpen())
+  {
+    return this->DeviceCapabilities;
+  }
+  // Set when the device opened and constant while it stays open: safe beside the haptic thread.
+  const vtouch::DeviceCapabilities& c = device->capabilities();
+  const double values[12] = { 1.0,
+    static_cast<double>(c.sensedDof),
+    static_cast<double>(c.actuatedDof),
+    c.workspace_mm.x,
+    c.workspace_mm.y,
+    c.workspace_mm.z,
+    c.maxContinuousForce_N,
+    c.maxStiffness_N_per_m,
+    c.maxUpdateRate_Hz,
+    c.hasPressure ? 1.0 : 0.0,
+    c.positionResolution_mm,
+    static_cast<double>(c.buttonCount) };
+  std::copy(values, values + 12, this->DeviceCapabilities);
+  return this->DeviceCapabilities;
+}
+
+const char* vtkVesselTouchHapticSession::GetDeviceName()
+{
+  auto device = this->Internals->Session.device();
+  this->Internals->DeviceName =
+    device && device->isOpen() ? std::string(device->capabilities().name) : std::string();
+  return this->Internals->DeviceName.c_str();
 }
 
 int* vtkVesselTouchHapticSession::GetSessionStatus()

@@ -248,6 +248,13 @@ public:
   /// The force last sent to the device, x y z (N, device frame, after the safety layer); zero
   /// when no device is open, and after Stop() (which zeroes the force before closing).
   double* GetDeviceForce() VTK_SIZEHINT(3);
+  /// What the open device can do (vtouch::DeviceCapabilities): open (0/1), sensed DOF, actuated
+  /// DOF, workspace x y z (mm), largest continuous force (N), largest stable stiffness at 1 kHz
+  /// (N/m), fastest update rate (Hz), pressure input (0/1), position resolution (mm), buttons.
+  /// All zero when no device is open (before Start, after Stop).
+  double* GetDeviceCapabilities() VTK_SIZEHINT(12);
+  /// The open device's product name ("" when none is open).
+  const char* GetDeviceName();
   /// running (0/1), fault code (0 none), log entries, dropped log entries, skeleton paths,
   /// skeleton points.
   int* GetSessionStatus() VTK_SIZEHINT(6);
@@ -349,6 +356,7 @@ private:
 
   double Statistics[12] = {};
   double AgentState[23] = {};
+  double DeviceCapabilities[12] = {};
   double DeviceForce[3] = {};
   int SessionStatus[6] = {};
 };

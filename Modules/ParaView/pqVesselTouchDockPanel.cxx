@@ -93,6 +93,7 @@ public:
   /// The panel's own last error (a failed pick, no centerline...) and the session's (its last
   /// error or fault); the red line shows the session's first.
   QString PanelError;
+  QVariantMap ShownDeviceCapabilities; // what the device section shows, to update on change only
   QString SessionError;
 
   pqVesselTouchPanelValues fromWidgets() const
@@ -524,11 +525,33 @@ void pqVesselTouchDockPanel::updateSessionStatus()
     status.faultCode != 0 ? tr("Fault: %1").arg(status.faultText) : status.lastError;
   this->showError(in.PanelError);
   in.Ui.deviceWidget->setStatusText(status.running ? tr("Open") : tr("Closed"));
+  this->showDevice(status);
   if (status.running != in.Running)
   {
     in.Running = status.running;
     Q_EMIT this->runningChanged(status.running);
   }
+}
+
+void pqVesselTouchDockPanel::showDevice(const pqVesselTouchSessionStatus& status)
+{
+  pqInternals& in = *this->Internals;
+  // A fault names the device's trouble in the device section too (the red line says it first).
+  in.Ui.deviceWidget->setFault(status.faultCode != 0 ? status.faultText : QString());
+  if (!status.deviceOpen)
+  {
+    return; // keep showing the device last opened: its limits still bound the settings
+  }
+  const qVesselTouchDeviceCapabilities& caps = status.deviceCapabilities;
+  if (in.ShownDeviceCapabilities == caps.toVariantMap())
+  {
+    return;
+  }
+  in.ShownDeviceCapabilities = caps.toVariantMap();
+  in.Ui.deviceWidget->setCapabilities(caps);
+  // The proxy's coupler stiffness must stay renderable by this device (Ikits eq. 7: a stiffer
+  // coupler than the device holds at its rate goes unstable); damping has no reported bound.
+  in.Ui.forceLawWidget->setDeviceLimits(caps.maxStiffness_N_per_m, 0.0);
 }
 
 void pqVesselTouchDockPanel::showError(const QString& message)

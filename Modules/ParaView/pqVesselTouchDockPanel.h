@@ -15,6 +15,7 @@ class pqPipelineSource;
 class pqView;
 class pqVesselTouchCenterlineWorkflow;
 class pqVesselTouchSessionBinding;
+struct pqVesselTouchSessionStatus;
 class qVesselTouchDeviceWidget;
 class qVesselTouchForceLawWidget;
 class qVesselTouchForceZonesWidget;
@@ -89,6 +90,9 @@ private Q_SLOTS:
   void showError(const QString& message);
 
 private:
+  /// The open device's capabilities and fault in the device section, and its stiffness limit on
+  /// the force-law widget.
+  void showDevice(const pqVesselTouchSessionStatus& status);
   void connectWidgets();
   void setUpDevices();
   void writeReportIfRequested() const;

@@ -72,6 +72,24 @@ pqVesselTouchSessionStatus pqVesselTouchSessionStatus::read(vtkSMProxy* session)
   {
     status.deviceForce_N[i] = force.GetAsDouble(i);
   }
+
+  vtkSMPropertyHelper caps(session, "DeviceCapabilitiesInfo");
+  status.deviceOpen = caps.GetAsDouble(0) > 0.5;
+  if (status.deviceOpen)
+  {
+    qVesselTouchDeviceCapabilities& c = status.deviceCapabilities;
+    c.name = stringInfo(session, "DeviceNameInfo");
+    c.sensedDof = static_cast<int>(caps.GetAsDouble(1));
+    c.actuatedDof = static_cast<int>(caps.GetAsDouble(2));
+    c.workspaceX_mm = caps.GetAsDouble(3);
+    c.workspaceY_mm = caps.GetAsDouble(4);
+    c.workspaceZ_mm = caps.GetAsDouble(5);
+    c.maxContinuousForce_N = caps.GetAsDouble(6);
+    c.maxStiffness_N_per_m = caps.GetAsDouble(7);
+    c.maxUpdateRate_Hz = caps.GetAsDouble(8);
+    c.hasPressure = caps.GetAsDouble(9) > 0.5;
+    c.buttonCount = static_cast<int>(caps.GetAsDouble(11));
+  }
   return status;
 }
 

@@ -1,9 +1,11 @@
 // A snapshot of the haptic session proxy's information properties (StatisticsInfo,
-// AgentStateInfo, SessionStatusInfo, DeviceForceInfo, LastErrorInfo, FaultInfo,
-// SchedulerNoticeInfo), read by the panel's ~10 Hz timer and by the panel self-test.
+// AgentStateInfo, SessionStatusInfo, DeviceForceInfo, DeviceCapabilitiesInfo, DeviceNameInfo,
+// LastErrorInfo, FaultInfo, SchedulerNoticeInfo), read by the panel's ~10 Hz timer and by the
+// panel self-test.
 #ifndef pqVesselTouchSessionStatus_h
 #define pqVesselTouchSessionStatus_h
 
+#include "qVesselTouchDeviceCapabilities.h"
 #include "qVesselTouchLoopStats.h"
 
 #include <QString>
@@ -27,6 +29,9 @@ struct pqVesselTouchSessionStatus
   int skeletonPoints = 0;
   /// The force last sent to the device, N (zero after Stop), and the agent's force, N.
   double deviceForce_N[3] = { 0.0, 0.0, 0.0 };
+  /// A device is open (the session runs on it); `deviceCapabilities` are then its own.
+  bool deviceOpen = false;
+  qVesselTouchDeviceCapabilities deviceCapabilities;
   double agentForce_N[2] = { 0.0, 0.0 };
   /// Agent position, world mm.
   double agentPosition_mm[3] = { 0.0, 0.0, 0.0 };

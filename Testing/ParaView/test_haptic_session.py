@@ -169,8 +169,17 @@ s.Start(rate_Hz=1000.0)
 check.true(s.IsRunning(), "the real-time loop runs")
 time.sleep(0.3)
 live = s.GetAgentState()
+caps = s.GetDeviceCapabilities()
+check.true(caps is not None, "the running session reports its device's capabilities")
+if caps is not None:
+    check.true("simulated" in caps["name"].lower(), "the simulated handle (%r)" % caps["name"])
+    check.near(caps["max_continuous_force_N"], s.proxy.GetProperty("SimulatedMaxForce").GetData(),
+               1e-12, "its force limit is the SimulatedMaxForce set")
+    check.true(caps["max_stiffness_N_per_m"] > 0 and caps["sensed_dof"] >= 2,
+               "stiffness limit and sensed axes (%r)" % caps)
 s.Stop()
 check.true(not s.IsRunning(), "Stop stops the loop")
+check.true(s.GetDeviceCapabilities() is None, "after Stop no device is open")
 stats = s.GetStatistics()
 check.true(stats["ticks"] > 0 and stats["nominal_rate_Hz"] == 1000.0,
            "statistics recorded (%d ticks)" % stats["ticks"])

@@ -440,6 +440,20 @@ class HapticSession(object):
                 "scheduler": self._info("SchedulerNoticeInfo"),
                 "realtime_scheduling": _first(self._info("RealTimeSchedulingInfo")) == 1}
 
+    def GetDeviceCapabilities(self):
+        """What the open device can do, or None when no device is open (before Start, after
+        Stop): name, sensed/actuated DOF, workspace (mm), largest continuous force (N), largest
+        stable stiffness (N/m), fastest update rate (Hz), pressure input, position resolution
+        (mm), buttons."""
+        v = list(self._info("DeviceCapabilitiesInfo"))
+        if not v or v[0] < 0.5:
+            return None
+        return {"name": self._info("DeviceNameInfo") or "", "sensed_dof": int(v[1]),
+                "actuated_dof": int(v[2]), "workspace_mm": v[3:6],
+                "max_continuous_force_N": v[6], "max_stiffness_N_per_m": v[7],
+                "max_update_rate_Hz": v[8], "has_pressure": v[9] > 0.5,
+                "position_resolution_mm": v[10], "buttons": int(v[11])}
+
     def GetLastError(self):
         """The last error of the session ("" when none)."""
         return self._info("LastErrorInfo") or ""

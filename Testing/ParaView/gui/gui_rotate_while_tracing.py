@@ -27,8 +27,25 @@ def agent_report(gui):
         return {}
 
 
+def wait_report(gui, condition, seconds=10.0):
+    """The agent report once `condition` holds (it is rewritten twice a second by the GUI thread,
+    later on a loaded machine), else the last one read."""
+    deadline = time.time() + seconds
+    report = agent_report(gui)
+    while not condition(report) and time.time() < deadline:
+        time.sleep(0.2)
+        report = agent_report(gui)
+    return report
+
+
 def body(gui, check):
     check(gui.wait_until(lambda s: s["session"]["running"], seconds=20), "the session runs")
+    # Issue 18, item 5: the open device's limits reach the force-law widget. The mouse reports
+    # 1000 N/m (PointerDevice's capabilities): the coupler stiffness cannot be set above it.
+    check(gui.wait_until(lambda s: s["widgets"].get("proxyStiffnessSpinBox", {}).get("maximum")
+                         == 1000.0, seconds=5),
+          "the coupler stiffness is bounded by the mouse device's 1000 N/m (maximum %r)"
+          % gui.state["widgets"].get("proxyStiffnessSpinBox", {}).get("maximum"))
     gui.run("check", "actionVesselTouchTraceWithMouse", 1)
     check(gui.wait_until(lambda s: s["actions"]["actionVesselTouchTraceWithMouse"]["checked"]),
           "Trace with mouse is checked")
@@ -49,9 +66,11 @@ def body(gui, check):
         time.sleep(0.05)
     gui.xdotool("mouseup", 1)
     gui.xdotool("keyup", "ctrl")
-    time.sleep(1.5)  # the agent report is written twice a second
-    after = gui.command("state")["state"]
+    pushed_before = report_before.get("camera_pushes", 0)
+    report_after = wait_report(gui, lambda r: r.get("camera_pushes", 0) > pushed_before)
+    time.sleep(0.6)  # one more report: pushes and builds of the same moment
     report_after = agent_report(gui)
+    after = gui.command("state")["state"]
     moved = sum((a - b) ** 2 for a, b in zip(after["camera_position"],
                                              before["camera_position"])) ** 0.5
     check(moved > 1.0, "Ctrl + left drag rotated the camera (%.2f mm)" % moved)
@@ -63,6 +82,12 @@ def body(gui, check):
           % (before["session"]["ticks"], session["ticks"]))
     pushes = (report_before.get("camera_pushes", 0), report_after.get("camera_pushes", 0))
     check(pushes[1] > pushes[0], "the new camera reached the session (pushes %d -> %d)" % pushes)
+    # Issue 18, item 2: each camera push is one command, so one view-model rebuild, never one per
+    # camera property (the facade publishes once per push: the proxy's post_push).
+    builds = (report_before.get("view_model_builds", -1), report_after.get("view_model_builds", -1))
+    check(builds[1] - builds[0] == pushes[1] - pushes[0],
+          "one view-model rebuild per camera push (builds %d -> %d, pushes %d -> %d)"
+          % (builds + pushes))
     print("loop through the drag: period error max %.0f us, p99 %.0f us, overruns %d"
           % (session["period_error_max_us"], session["period_error_p99_us"],
              session["overruns"]), flush=True)
