@@ -33,11 +33,12 @@ import math
 
 from paraview import servermanager, simple
 
-__all__ = ["HapticSession", "logic", "SESSION_NAME", "FORCE_LAWS", "DEVICES"]
+__all__ = ["HapticSession", "logic", "SESSION_NAME", "FORCE_LAW_ALIASES", "DEVICES"]
 
-#: Force law names accepted by :meth:`HapticSession.SetForceLaw` -> the ``ForceLaw`` value.
-FORCE_LAWS = {"ldgf": 0, "changeofheight": 1, "coh": 1, "lateralgradient": 2, "lateral": 2,
-              "constraintproxy": 3, "proxy": 3, "none": 4}
+#: Short names accepted by :meth:`HapticSession.SetForceLaw` beside the labels of the
+#: ``ForceLaw`` property's choices (which come from the parameter table through the proxy).
+FORCE_LAW_ALIASES = {"coh": "changeofheight", "lateral": "lateralgradient",
+                     "proxy": "constraintproxy"}
 #: Device names accepted by :meth:`HapticSession.SetDevice` -> the ``DeviceType`` value.
 DEVICES = {"simulated": 0, "pointer": 1, "mouse": 1, "replay": 2, "hid": 3}
 
@@ -56,6 +57,15 @@ def _first(value):
 
 def _key(name):
     return "".join(c for c in str(name).lower() if c.isalnum())
+
+
+def _whole(name, value):
+    """An integer property's value as an int; ValueError for a number that is not whole (the
+    property cannot carry it to the session)."""
+    number = float(value)
+    if not number.is_integer():
+        raise ValueError("%s = %r is not a whole number (an integer property)" % (name, value))
+    return int(number)
 
 
 def _normalized(v):
@@ -120,7 +130,9 @@ class HapticSession(object):
     def _set(self, **properties):
         """Sets several properties and pushes them in ONE UpdateVTKObjects, so the session's
         ApplyProperties (the proxy's post_push) publishes them to the haptic thread together:
-        a camera's position, focal point and view up never arrive apart."""
+        a camera's position, focal point and view up never arrive apart. A haptic parameter the
+        session refuses (out of its range: the C++ session checks every value against the
+        parameter table) raises ValueError with the session's message; it keeps its old value."""
         smproxy = self.proxy.SMProxy
         for name, value in properties.items():
             prop = smproxy.GetProperty(name)
@@ -128,10 +140,33 @@ class HapticSession(object):
                 self.proxy.SetPropertyWithName(name, value)  # inputs, strings: as ParaView does
                 continue
             values = list(value) if isinstance(value, (list, tuple)) else [value]
+            if prop.GetClassName() == "vtkSMIntVectorProperty":
+                values = [_whole(name, v) for v in values]
             prop.SetNumberOfElements(len(values))
             for i, v in enumerate(values):
                 prop.SetElement(i, v)
         smproxy.UpdateVTKObjects()
+        requested = {n: float(v) for n, v in properties.items()
+                     if n in self.HapticParameterNames() and not isinstance(v, (list, tuple, str))}
+        if requested:
+            self._check_refused(requested)
+
+    def _check_refused(self, requested):
+        """Raises ValueError when the session kept another value than the one requested (it
+        refused it), after setting the property back to what the session holds."""
+        applied = self.GetHapticParameters()
+        refused = [n for n, v in requested.items() if applied.get(n) != v]
+        if not refused:
+            return
+        message = self.GetLastError()
+        smproxy = self.proxy.SMProxy
+        for name in refused:
+            prop = smproxy.GetProperty(name)
+            kept = applied[name]
+            prop.SetElement(0, int(kept) if prop.GetClassName() == "vtkSMIntVectorProperty"
+                            else kept)
+        smproxy.UpdateVTKObjects()
+        raise ValueError(message or "refused: %s" % ", ".join(refused))
 
     def _info(self, name):
         self.proxy.UpdatePropertyInformation()
@@ -294,27 +329,30 @@ class HapticSession(object):
             self._set(PointerPressed=1 if pressed else 0)
 
     # --- force -----------------------------------------------------------------------------
-    def SetForceLaw(self, law, k=None, lambda_mm=None, z_max_mm=None, forget_time_s=None,
-                    probe_px=None, k_c=None, b_c=None, tau_t=None, snap_N=None,
-                    tangent_drag=None, snap_drag=None):
-        """'LDGF', 'ChangeOfHeight', 'LateralGradient', 'ConstraintProxy' or 'None', with the
+    def SetForceLaw(self, law, k=None, lambda_mm=None, z_max_mm=None, probe_px=None, k_c=None,
+                    b_c=None, tau_t=None, snap_N=None, tangent_drag=None, snap_drag=None):
+        """'LDGF', 'ChangeOfHeight', 'LateralGradient', 'ConstraintProxy' or 'None' (the labels
+        of the ForceLaw property's choices, or the short names of FORCE_LAW_ALIASES), with the
         law's parameters: ``k`` (N, the force-zone gain k(P) in the saturation zone),
         ``lambda_mm`` (LDGF / change of height), ``z_max_mm`` (change of height, Hayward & Yi
-        eq. 8; 0 = two counts of the device's resolution; ``forget_time_s`` is ignored: eqs. 8-9
-        have no forgetting factor), ``probe_px`` (lateral gradient), ``k_c`` (N/m), ``b_c`` (N s/m), ``tau_t``,
-        ``snap_N`` (N), ``tangent_drag``, ``snap_drag`` (constraint proxy). Switching is
-        crossfaded (no force jump)."""
-        try:
-            value = FORCE_LAWS[_key(law)]
-        except KeyError:
-            raise ValueError("unknown force law %r (one of %s)" % (law, ", ".join(FORCE_LAWS)))
+        eq. 8; 0 = from the device's resolution), ``probe_px`` (lateral gradient), ``k_c``
+        (N/m), ``b_c`` (N s/m), ``tau_t``, ``snap_N`` (N), ``tangent_drag``, ``snap_drag``
+        (constraint proxy). Switching is crossfaded (no force jump). Every other haptic
+        parameter: SetHapticParameters(); defaults, ranges and meanings:
+        DescribeHapticParameters()."""
+        choices = self._choices("ForceLaw")
+        key = _key(law)
+        value = choices.get(FORCE_LAW_ALIASES.get(key, key))
+        if value is None:
+            raise ValueError("unknown force law %r (one of %s)"
+                             % (law, ", ".join(list(choices) + list(FORCE_LAW_ALIASES))))
         props = {"ForceLaw": value}
         if k is not None:
             props["ZoneGain"] = k
         if lambda_mm is not None:
             props["ChangeOfHeightLambda" if value == 1 else "LdgfLambda"] = lambda_mm
-        optional = (("ChangeOfHeightZMax", z_max_mm), ("ChangeOfHeightForgetTime", forget_time_s),
-                    ("LateralProbe", probe_px), ("ProxyStiffness", k_c), ("ProxyDamping", b_c),
+        optional = (("ChangeOfHeightZMax", z_max_mm), ("LateralProbe", probe_px),
+                    ("ProxyStiffness", k_c), ("ProxyDamping", b_c),
                     ("ProxyTangentThreshold", tau_t), ("ProxySnapThreshold", snap_N))
         for name, v in optional:
             if v is not None:
@@ -325,9 +363,83 @@ class HapticSession(object):
             props["ProxySnapDrag"] = 1 if snap_drag else 0
         self._set(**props)
 
+    # --- every haptic parameter (one table: Logic/Haptics/vtouchHapticParameters.def) ------
+    def HapticParameterNames(self):
+        """The names of the haptic parameters, in table order, as the session reports them."""
+        names = getattr(self, "_parameter_names", None)
+        if names is None:
+            names = [pair.split("=", 1)[0]
+                     for pair in str(self._info("AppliedHapticParametersInfo")).split()]
+            self._parameter_names = names
+        return names
+
+    def SetHapticParameters(self, **values):
+        """Sets haptic parameters by name (``SetHapticParameters(LdgfLambda=0.01, Zoom=2)``) in
+        one push. Booleans are given as True/False or 1/0, choices as their values. Raises
+        ValueError for an unknown name, and with the session's message (name, value, range,
+        unit) for a value it refuses; a refused parameter keeps its value."""
+        names = self.HapticParameterNames()
+        unknown = [n for n in values if n not in names]
+        if unknown:
+            raise ValueError("unknown haptic parameter(s) %s (see HapticParameterNames())"
+                             % ", ".join(unknown))
+        self._set(**{n: (int(v) if isinstance(v, bool) else v) for n, v in values.items()})
+
+    def GetHapticParameters(self):
+        """The haptic parameters the C++ session holds (what the haptic thread reads), as a dict
+        name -> value (float)."""
+        text = str(self._info("AppliedHapticParametersInfo"))
+        return {name: float(value) for name, value in
+                (pair.split("=", 1) for pair in text.split())}
+
+    def DescribeHapticParameters(self):
+        """Per haptic parameter: its default, range (minimum, maximum), choices (value -> label,
+        for the choices) and documentation (label, unit, meaning), read from the proxy's
+        properties and domains, which are generated from the parameter table."""
+        out = {}
+        defaults = self._xml_defaults()
+        for name in self.HapticParameterNames():
+            prop = self.proxy.SMProxy.GetProperty(name)
+            entry = {"default": defaults[name],
+                     "documentation": prop.GetDocumentation().GetDescription().strip()}
+            domain = prop.FindDomain("vtkSMEnumerationDomain")
+            if domain is not None:
+                entry["choices"] = {domain.GetEntryValue(i): domain.GetEntryText(i)
+                                    for i in range(domain.GetNumberOfEntries())}
+            domain = domain or prop.FindDomain("vtkSMBooleanDomain")
+            if domain is None:
+                domain = prop.FindDomain("vtkSMDoubleRangeDomain") or \
+                    prop.FindDomain("vtkSMIntRangeDomain")
+                entry["range"] = (float(domain.GetMinimum(0)), float(domain.GetMaximum(0)))
+            elif "choices" in entry:
+                entry["range"] = (min(entry["choices"]), max(entry["choices"]))
+            else:
+                entry["range"] = (0.0, 1.0)
+            out[name] = entry
+        return out
+
+    def _xml_defaults(self):
+        """{property name: default value} of the proxy's definition (the generated XML)."""
+        definition = servermanager.ProxyManager().SMProxyManager.GetProxyDefinitionManager() \
+            .GetProxyDefinition(self.proxy.SMProxy.GetXMLGroup(), self.proxy.SMProxy.GetXMLName())
+        defaults = {}
+        for i in range(definition.GetNumberOfNestedElements()):
+            element = definition.GetNestedElement(i)
+            value = element.GetAttribute("default_values")
+            if element.GetAttribute("name") and value and len(value.split()) == 1:
+                defaults[element.GetAttribute("name")] = float(value)
+        return defaults
+
+    def _choices(self, name):
+        """The choices of an enumeration property as {key: value} (key: the label, lower case,
+        letters and digits only)."""
+        domain = self.proxy.SMProxy.GetProperty(name).FindDomain("vtkSMEnumerationDomain")
+        return {_key(domain.GetEntryText(i)): domain.GetEntryValue(i)
+                for i in range(domain.GetNumberOfEntries())}
+
     def SetContact(self, dwell_s=None, approach_at_start=None):
         """When the exploring cursor captures the agent (Yi & Hayward section 3.2): after
-        ``dwell_s`` within the capture radius (default 0.05 s; 0 = at once), and, with
+        ``dwell_s`` within the capture radius (0 = at once), and, with
         ``approach_at_start``, only once the cursor has come from outside every capture radius
         after Start. After a click it always must leave the vessel first."""
         props = {}
@@ -338,15 +450,17 @@ class HapticSession(object):
         self._set(**props)
 
     def SetTracerRule(self, rule):
-        """'offset' (default) or 'movement' (Yi & Hayward section 3.2.1 as written)."""
-        rules = {"offset": 0, "movement": 1}
-        key = str(rule).lower()
+        """'offset' or 'movement' (Yi & Hayward section 3.2.1 as written): the labels of the
+        TracerRule property's choices."""
+        rules = self._choices("TracerRule")
+        key = _key(rule)
         if key not in rules:
-            raise ValueError("unknown tracer rule %r (offset or movement)" % (rule,))
+            raise ValueError("unknown tracer rule %r (one of %s)" % (rule, ", ".join(rules)))
         self._set(TracerRule=rules[key])
 
     def SetZoom(self, r):
-        """Haptic zoom r = cursor movement / hand movement, clamped to [0.1, 10]."""
+        """Haptic zoom r = cursor movement / hand movement (a value out of the Zoom parameter's
+        range raises ValueError)."""
         self._set(Zoom=float(r))
 
     def SetForceZones(self, gain_N=None, zero_below=None, saturate_above=None):

@@ -97,6 +97,25 @@ for name, value in expected.items():
           % (name, values.get("vtk_object", {}).get(name), value))
 check(close(report.get("zones_gain_N"), 0.7, 1e-6), "the zones plot shows the law's gain")
 
+# Every haptic parameter of the one table went through the panel's write path (its values,
+# written by looping over the table) to the proxy and on to the C++ session's HapticParameters;
+# those the self-test did not edit are at the table's defaults (the panel's defaults are the
+# table's: no copy to drift).
+table = os.path.join(env["VESSELTOUCH_SOURCE_DIR"], "Logic", "Haptics", "vtouchHapticParameters.def")
+defaults = {}
+for row in open(table):
+    if row.startswith("VTOUCH_HAPTIC_PARAMETER("):
+        fields = [f.strip() for f in row.split('"')[0].split(",")]
+        defaults[fields[2]] = float(row.split('"')[4].split(",")[1])
+applied = values.get("vtk_object", {})
+check(len(defaults) >= 40, "the table lists the parameters (%d)" % len(defaults))
+for name, default in defaults.items():
+    check(close(values.get(name), applied.get(name), 0.0),
+          "%s: proxy %r reaches the C++ session (%r)" % (name, values.get(name), applied.get(name)))
+    if name not in expected:
+        check(close(applied.get(name), default, 0.0),
+              "%s at the table default %r (session %r)" % (name, default, applied.get(name)))
+
 # Start with the simulated device, live zoom change, Stop with zero force.
 check(report.get("start_returned") is True, "Start succeeded (error: %r)"
       % report.get("error_after_start"))
