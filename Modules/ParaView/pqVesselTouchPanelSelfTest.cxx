@@ -117,6 +117,8 @@ void pqVesselTouchPanelSelfTest::deleteSession()
   }
   pqVesselTouchSessionBinding* binding = this->Panel->sessionBinding();
   this->Report.insert("session_at_startup", binding->proxy() != nullptr);
+  // The session as the panel's default values set it (a fresh user: no saved settings).
+  this->Report.insert("values_at_startup", this->sessionValues());
   if (binding->source())
   {
     pqApplicationCore::instance()->getObjectBuilder()->destroy(binding->source());

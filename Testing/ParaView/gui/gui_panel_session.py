@@ -116,6 +116,38 @@ for name, default in defaults.items():
         check(close(applied.get(name), default, 0.0),
               "%s at the table default %r (session %r)" % (name, default, applied.get(name)))
 
+# A session started from the panel's defaults (as they reached the C++ session at start-up) and
+# one started from Python's defaults render identical forces on the same offline trace.
+panel_defaults = report.get("values_at_startup", {}).get("vtk_object", {})
+check(len(panel_defaults) > len(defaults), "the panel's session at start-up reports its parameters")
+for name, default in defaults.items():
+    check(close(panel_defaults.get(name), default, 0.0),
+          "panel default %s = %r (table %r)" % (name, panel_defaults.get(name), default))
+trace = r"""
+import json, numpy
+from paraview import simple
+simple.LoadPlugin(%r, ns=globals())
+import vesseltouch
+phantom = VesselPhantom(Shape="Helix", Dimensions=[48, 48, 48])
+def forces(values):
+    s = vesseltouch.HapticSession(phantom)
+    s.SetHapticParameters(**values)
+    s.SetHandSweep(path=0, speed_mm_per_s=60.0)
+    return numpy.asarray(s.RunOffline(1.5, rate_Hz=1000.0)["force"])
+python_defaults = forces({})
+panel = forces(%r)
+print("TRACE=" + json.dumps({"equal": bool(numpy.array_equal(python_defaults, panel)),
+                             "max_N": float(numpy.abs(python_defaults).max())}))
+""" % (env["VESSELTOUCH_PLUGIN"], {k: v for k, v in panel_defaults.items() if k in defaults})
+run = subprocess.run([env["VESSELTOUCH_PVPYTHON"], "-c", trace], env=dict(os.environ),
+                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=240)
+line = [l for l in run.stdout.splitlines() if l.startswith("TRACE=")]
+check(bool(line), "the trace comparison ran (output: %s)" % run.stdout[-2000:])
+if line:
+    trace_result = json.loads(line[-1][len("TRACE="):])
+    check(trace_result["max_N"] > 0.05, "the trace renders a force (%r)" % trace_result)
+    check(trace_result["equal"], "panel defaults and Python defaults: identical forces")
+
 # Start with the simulated device, live zoom change, Stop with zero force.
 check(report.get("start_returned") is True, "Start succeeded (error: %r)"
       % report.get("error_after_start"))
