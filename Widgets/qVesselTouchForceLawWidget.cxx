@@ -261,6 +261,8 @@ qVesselTouchForceLawWidget::qVesselTouchForceLawWidget(QWidget* parent)
   }
   d->Ui.presetComboBox->addItem(tr("Custom"), QStringLiteral("Custom"));
   d->setupBindings();
+  // z_max 0 (its default) is sized from the device's position resolution.
+  d->Ui.cohZMaxSpinBox->setSpecialValueText(tr("from the device"));
   d->applyDeviceRanges();
   d->Values = d->clamped(Parameters());
   d->updateViews();
