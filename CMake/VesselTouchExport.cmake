@@ -46,7 +46,7 @@ foreach(_dir IN LISTS _vtouch_header_dirs)
     DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/VesselTouch"
     COMPONENT Development
     EXCLUDE_FROM_ALL
-    FILES_MATCHING PATTERN "*.h" PATTERN "*.hxx"
+    FILES_MATCHING PATTERN "*.h" PATTERN "*.hxx" PATTERN "*.def"
     PATTERN "Fuzz" EXCLUDE PATTERN "Tools" EXCLUDE)
 endforeach()
 

@@ -14,17 +14,34 @@ namespace
 {
 using Parameters = qVesselTouchForceLawParameters;
 using ForceLaw = qVesselTouchForceLawWidget::ForceLaw;
+using Id = vtouch::HapticParameterId;
 
-// Upper ends of the coupler spin boxes when the device sets no bound.
-constexpr double kStiffnessRangeMax_N_per_m = 5000.0;
-constexpr double kDampingRangeMax_N_s_per_m = 10.0;
+const vtouch::HapticParameterDescriptor& row(Id id)
+{
+  return vtouch::hapticParameter(id);
+}
 
-// One spin box bound to one field of the parameter struct.
+// One spin box bound to one value: a row of the haptic parameter table (its range and default
+// are the table's), or a per-law gain (ZoneGain's range).
 struct DoubleBinding
 {
   QDoubleSpinBox* SpinBox;
-  double Parameters::*Field;
+  Id Row;
+  double Parameters::*Gain; // nullptr: the table row itself
   ForceLaw Law;
+
+  double get(const Parameters& p) const { return Gain ? p.*Gain : row(Row).get(p.haptic); }
+  void set(Parameters& p, double value) const
+  {
+    if (Gain)
+    {
+      p.*Gain = value;
+    }
+    else
+    {
+      row(Row).set(p.haptic, value);
+    }
+  }
 };
 
 const char* const kPresetNames[] = { QT_TRANSLATE_NOOP("qVesselTouchForceLawWidget", "Gentle"),
@@ -32,35 +49,41 @@ const char* const kPresetNames[] = { QT_TRANSLATE_NOOP("qVesselTouchForceLawWidg
   QT_TRANSLATE_NOOP("qVesselTouchForceLawWidget", "Firm") };
 constexpr int kPresetCount = 3;
 
-// Per law and preset (gentle, default, firm). Defaults equal Logic/Haptics' defaults; gentle
-// halves the force and widens the regularization, firm doubles the force.
+// Per law and preset (gentle, default, firm). "Default" is the table's defaults; gentle halves
+// the force and widens the regularization, firm doubles the force.
 void writePreset(ForceLaw law, int preset, Parameters& p)
 {
-  const auto pick = [preset](double gentle, double normal, double firm)
-  { return preset == 0 ? gentle : (preset == 1 ? normal : firm); };
+  const auto scaled = [preset](Id id, double gentle, double firm)
+  {
+    const double d = row(id).defaultValue;
+    return preset == 0 ? gentle * d : (preset == 1 ? d : firm * d);
+  };
+  vtouch::HapticParameters& h = p.haptic;
+  const double gain_N = scaled(Id::ZoneGain, 0.5, 2.0);
   switch (law)
   {
     case ForceLaw::Ldgf:
-      p.ldgfGain_N = pick(0.5, 1.0, 2.0);
-      p.ldgfLambda_mm = pick(0.05, 0.01, 0.005);
+      p.ldgfGain_N = gain_N;
+      h.ldgfLambda_mm = scaled(Id::LdgfLambda, 5.0, 0.5);
       break;
     case ForceLaw::ChangeOfHeight:
-      p.cohGain_N = pick(0.5, 1.0, 2.0);
-      p.cohLambda_mm = pick(0.05, 0.01, 0.005);
-      p.cohZMax_mm = pick(2.0, 1.0, 0.5);
-      p.cohForgetTime_s = pick(0.2, 0.1, 0.05);
+      p.cohGain_N = gain_N;
+      h.cohLambda_mm = scaled(Id::ChangeOfHeightLambda, 5.0, 0.5);
+      // z_max: 0 (the default) sets it from the device's resolution; gentle and firm fix it.
+      h.cohZMax_mm =
+        preset == 0 ? 2.0 : (preset == 1 ? row(Id::ChangeOfHeightZMax).defaultValue : 0.5);
       break;
     case ForceLaw::LateralGradient:
-      p.lateralGain_N = pick(0.5, 1.0, 2.0);
-      p.lateralProbe_px = pick(3.0, 2.0, 1.0);
+      p.lateralGain_N = gain_N;
+      h.lateralProbe_px = scaled(Id::LateralProbe, 1.5, 0.5);
       break;
     case ForceLaw::ConstraintProxy:
-      p.proxyStiffness_N_per_m = pick(150.0, 300.0, 500.0);
-      p.proxyDamping_N_s_per_m = pick(0.05, 0.1, 0.2);
-      p.proxyTangentThreshold_N = pick(0.15, 0.3, 0.6);
-      p.proxySnapThreshold_N = pick(0.8, 1.5, 3.0);
-      p.proxyKappaLow = 0.15;
-      p.proxyKappaHigh = 0.5;
+      h.proxyStiffness_N_per_m = scaled(Id::ProxyStiffness, 0.5, 2.0);
+      h.proxyDamping_N_s_per_m = scaled(Id::ProxyDamping, 0.5, 2.0);
+      h.proxyTangentThreshold_N = scaled(Id::ProxyTangentThreshold, 0.5, 2.0);
+      h.proxySnapThreshold_N = scaled(Id::ProxySnapThreshold, 0.5, 2.0);
+      h.proxyKappaLow = row(Id::ProxyKappaLow).defaultValue;
+      h.proxyKappaHigh = row(Id::ProxyKappaHigh).defaultValue;
       break;
   }
 }
@@ -99,37 +122,45 @@ void qVesselTouchForceLawWidgetPrivate::setupBindings()
 {
   const auto& ui = this->Ui;
   this->Bindings = {
-    { ui.ldgfGainSpinBox, &Parameters::ldgfGain_N, ForceLaw::Ldgf },
-    { ui.ldgfLambdaSpinBox, &Parameters::ldgfLambda_mm, ForceLaw::Ldgf },
-    { ui.cohGainSpinBox, &Parameters::cohGain_N, ForceLaw::ChangeOfHeight },
-    { ui.cohLambdaSpinBox, &Parameters::cohLambda_mm, ForceLaw::ChangeOfHeight },
-    { ui.cohZMaxSpinBox, &Parameters::cohZMax_mm, ForceLaw::ChangeOfHeight },
-    { ui.cohForgetTimeSpinBox, &Parameters::cohForgetTime_s, ForceLaw::ChangeOfHeight },
-    { ui.lateralGainSpinBox, &Parameters::lateralGain_N, ForceLaw::LateralGradient },
-    { ui.lateralProbeSpinBox, &Parameters::lateralProbe_px, ForceLaw::LateralGradient },
-    { ui.proxyStiffnessSpinBox, &Parameters::proxyStiffness_N_per_m, ForceLaw::ConstraintProxy },
-    { ui.proxyDampingSpinBox, &Parameters::proxyDamping_N_s_per_m, ForceLaw::ConstraintProxy },
+    { ui.ldgfGainSpinBox, Id::ZoneGain, &Parameters::ldgfGain_N, ForceLaw::Ldgf },
+    { ui.ldgfLambdaSpinBox, Id::LdgfLambda, nullptr, ForceLaw::Ldgf },
+    { ui.cohGainSpinBox, Id::ZoneGain, &Parameters::cohGain_N, ForceLaw::ChangeOfHeight },
+    { ui.cohLambdaSpinBox, Id::ChangeOfHeightLambda, nullptr, ForceLaw::ChangeOfHeight },
+    { ui.cohZMaxSpinBox, Id::ChangeOfHeightZMax, nullptr, ForceLaw::ChangeOfHeight },
+    { ui.lateralGainSpinBox, Id::ZoneGain, &Parameters::lateralGain_N, ForceLaw::LateralGradient },
+    { ui.lateralProbeSpinBox, Id::LateralProbe, nullptr, ForceLaw::LateralGradient },
+    { ui.proxyStiffnessSpinBox, Id::ProxyStiffness, nullptr, ForceLaw::ConstraintProxy },
+    { ui.proxyDampingSpinBox, Id::ProxyDamping, nullptr, ForceLaw::ConstraintProxy },
     { ui.proxyTangentThresholdSpinBox,
-      &Parameters::proxyTangentThreshold_N,
+      Id::ProxyTangentThreshold,
+      nullptr,
       ForceLaw::ConstraintProxy },
-    { ui.proxySnapThresholdSpinBox, &Parameters::proxySnapThreshold_N, ForceLaw::ConstraintProxy },
-    { ui.proxyKappaLowSpinBox, &Parameters::proxyKappaLow, ForceLaw::ConstraintProxy },
-    { ui.proxyKappaHighSpinBox, &Parameters::proxyKappaHigh, ForceLaw::ConstraintProxy },
+    { ui.proxySnapThresholdSpinBox, Id::ProxySnapThreshold, nullptr, ForceLaw::ConstraintProxy },
+    { ui.proxyKappaLowSpinBox, Id::ProxyKappaLow, nullptr, ForceLaw::ConstraintProxy },
+    { ui.proxyKappaHighSpinBox, Id::ProxyKappaHigh, nullptr, ForceLaw::ConstraintProxy },
   };
+  // Ranges and meanings from the table: the spin boxes cannot offer what the session refuses.
+  for (const DoubleBinding& binding : this->Bindings)
+  {
+    const vtouch::HapticParameterDescriptor& d = row(binding.Row);
+    const QSignalBlocker blocker(binding.SpinBox);
+    binding.SpinBox->setRange(d.minimum, d.maximum);
+    binding.SpinBox->setToolTip(QString::fromUtf8(d.meaning));
+  }
 }
 
 void qVesselTouchForceLawWidgetPrivate::applyDeviceRanges()
 {
+  const double stiffnessMax_N_per_m = row(Id::ProxyStiffness).maximum;
+  const double dampingMax_N_s_per_m = row(Id::ProxyDamping).maximum;
   const QSignalBlocker b0(this->Ui.proxyStiffnessSpinBox);
   const QSignalBlocker b1(this->Ui.proxyDampingSpinBox);
   this->Ui.proxyStiffnessSpinBox->setMaximum(
-    this->MaxStiffness_N_per_m > 0.0
-      ? std::min(this->MaxStiffness_N_per_m, kStiffnessRangeMax_N_per_m)
-      : kStiffnessRangeMax_N_per_m);
+    this->MaxStiffness_N_per_m > 0.0 ? std::min(this->MaxStiffness_N_per_m, stiffnessMax_N_per_m)
+                                     : stiffnessMax_N_per_m);
   this->Ui.proxyDampingSpinBox->setMaximum(
-    this->MaxDamping_N_s_per_m > 0.0
-      ? std::min(this->MaxDamping_N_s_per_m, kDampingRangeMax_N_s_per_m)
-      : kDampingRangeMax_N_s_per_m);
+    this->MaxDamping_N_s_per_m > 0.0 ? std::min(this->MaxDamping_N_s_per_m, dampingMax_N_s_per_m)
+                                     : dampingMax_N_s_per_m);
   QStringList bounds;
   if (this->MaxStiffness_N_per_m > 0.0)
   {
@@ -149,17 +180,18 @@ Parameters qVesselTouchForceLawWidgetPrivate::clamped(Parameters p) const
   // The spin boxes carry each range (including the device bounds) and round to their decimals.
   for (const DoubleBinding& binding : this->Bindings)
   {
-    double& value = p.*(binding.Field);
+    double value = binding.get(p);
     const QDoubleSpinBox* box = binding.SpinBox;
     const double scale = std::pow(10.0, box->decimals());
     value = std::isfinite(value) ? value : box->minimum();
-    value = std::clamp(std::round(value * scale) / scale, box->minimum(), box->maximum());
+    binding.set(p, std::clamp(std::round(value * scale) / scale, box->minimum(), box->maximum()));
   }
   // The knees of kappa stay ordered: s0 < s1.
-  if (p.proxyKappaLow >= p.proxyKappaHigh)
+  vtouch::HapticParameters& h = p.haptic;
+  if (h.proxyKappaLow >= h.proxyKappaHigh)
   {
-    p.proxyKappaHigh = std::min(1.0, p.proxyKappaLow + 0.01);
-    p.proxyKappaLow = std::min(p.proxyKappaLow, p.proxyKappaHigh - 0.01);
+    h.proxyKappaHigh = std::min(row(Id::ProxyKappaHigh).maximum, h.proxyKappaLow + 0.01);
+    h.proxyKappaLow = std::min(h.proxyKappaLow, h.proxyKappaHigh - 0.01);
   }
   return p;
 }
@@ -169,14 +201,15 @@ void qVesselTouchForceLawWidgetPrivate::updateViews()
   for (const DoubleBinding& binding : this->Bindings)
   {
     const QSignalBlocker blocker(binding.SpinBox);
-    binding.SpinBox->setValue(this->Values.*(binding.Field));
+    binding.SpinBox->setValue(binding.get(this->Values));
   }
   {
     const QSignalBlocker b0(this->Ui.proxyTangentRuleComboBox);
     const QSignalBlocker b1(this->Ui.proxySnapRuleComboBox);
     const QSignalBlocker b2(this->Ui.lawComboBox);
-    this->Ui.proxyTangentRuleComboBox->setCurrentIndex(this->Values.proxyTangentDrag ? 1 : 0);
-    this->Ui.proxySnapRuleComboBox->setCurrentIndex(this->Values.proxySnapDrag ? 1 : 0);
+    this->Ui.proxyTangentRuleComboBox->setCurrentIndex(
+      this->Values.haptic.proxyTangentDrag ? 1 : 0);
+    this->Ui.proxySnapRuleComboBox->setCurrentIndex(this->Values.haptic.proxySnapDrag ? 1 : 0);
     this->Ui.lawComboBox->setCurrentIndex(int(this->Law));
   }
   this->Ui.lawPages->setCurrentIndex(int(this->Law));
@@ -186,8 +219,8 @@ void qVesselTouchForceLawWidgetPrivate::updateViews()
 
 void qVesselTouchForceLawWidgetPrivate::updateRuleDependentControls()
 {
-  this->Ui.proxyTangentThresholdSpinBox->setEnabled(this->Values.proxyTangentDrag);
-  this->Ui.proxySnapThresholdSpinBox->setEnabled(this->Values.proxySnapDrag);
+  this->Ui.proxyTangentThresholdSpinBox->setEnabled(this->Values.haptic.proxyTangentDrag);
+  this->Ui.proxySnapThresholdSpinBox->setEnabled(this->Values.haptic.proxySnapDrag);
 }
 
 void qVesselTouchForceLawWidgetPrivate::updatePresetCombo()
@@ -228,21 +261,22 @@ qVesselTouchForceLawWidget::qVesselTouchForceLawWidget(QWidget* parent)
   }
   d->Ui.presetComboBox->addItem(tr("Custom"), QStringLiteral("Custom"));
   d->setupBindings();
+  // z_max 0 (its default) is sized from the device's position resolution.
+  d->Ui.cohZMaxSpinBox->setSpecialValueText(tr("from the device"));
   d->applyDeviceRanges();
   d->Values = d->clamped(Parameters());
   d->updateViews();
 
   for (const DoubleBinding& binding : d->Bindings)
   {
-    double Parameters::*field = binding.Field;
     connect(binding.SpinBox,
       QOverload<double>::of(&QDoubleSpinBox::valueChanged),
       this,
-      [this, field](double value)
+      [this, binding](double value)
       {
         Q_D(qVesselTouchForceLawWidget);
         Parameters p = d->Values;
-        p.*field = value;
+        binding.set(p, value);
         d->store(p);
       });
   }
@@ -253,7 +287,7 @@ qVesselTouchForceLawWidget::qVesselTouchForceLawWidget(QWidget* parent)
     {
       Q_D(qVesselTouchForceLawWidget);
       Parameters p = d->Values;
-      p.proxyTangentDrag = index == 1;
+      p.haptic.proxyTangentDrag = index == 1;
       d->store(p);
     });
   connect(d->Ui.proxySnapRuleComboBox,
@@ -263,7 +297,7 @@ qVesselTouchForceLawWidget::qVesselTouchForceLawWidget(QWidget* parent)
     {
       Q_D(qVesselTouchForceLawWidget);
       Parameters p = d->Values;
-      p.proxySnapDrag = index == 1;
+      p.haptic.proxySnapDrag = index == 1;
       d->store(p);
     });
   connect(d->Ui.lawComboBox,

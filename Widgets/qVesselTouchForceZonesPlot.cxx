@@ -22,9 +22,11 @@ constexpr int kBottomMargin = 20;
 class qVesselTouchForceZonesPlotPrivate
 {
 public:
-  double ZeroBelow = 0.05;
-  double SaturateAbove = 0.5;
-  double Gain_N = 1.0;
+  // The force zones' defaults: the table's (vtouchHapticParameters.def).
+  double ZeroBelow = vtouch::hapticParameter(vtouch::HapticParameterId::ZoneZeroBelow).defaultValue;
+  double SaturateAbove =
+    vtouch::hapticParameter(vtouch::HapticParameterId::ZoneSaturateAbove).defaultValue;
+  double Gain_N = vtouch::hapticParameter(vtouch::HapticParameterId::ZoneGain).defaultValue;
   double LivePressure = -1.0; // < 0: no dot
   qVesselTouchForceZonesPlot::Handle Dragged = qVesselTouchForceZonesPlot::NoHandle;
 };

@@ -21,9 +21,10 @@ class qVesselTouchForceZonesWidgetPrivate
 {
 public:
   Ui::qVesselTouchForceZonesWidget Ui;
-  double ZeroBelow = 0.05;
-  double SaturateAbove = 0.5;
-  double Gain_N = 1.0;
+  double ZeroBelow = vtouch::hapticParameter(vtouch::HapticParameterId::ZoneZeroBelow).defaultValue;
+  double SaturateAbove =
+    vtouch::hapticParameter(vtouch::HapticParameterId::ZoneSaturateAbove).defaultValue;
+  double Gain_N = vtouch::hapticParameter(vtouch::HapticParameterId::ZoneGain).defaultValue;
   double LivePressure = -1.0;
 
   void updateViews();

@@ -5,6 +5,8 @@
 #ifndef qVesselTouchForceZonesWidget_h
 #define qVesselTouchForceZonesWidget_h
 
+#include "vtouchHapticParameterTable.h"
+
 #include <QScopedPointer>
 #include <QWidget>
 
@@ -32,14 +34,15 @@ public:
   static double zoneGain(double pressure, double zeroBelow, double saturateAbove, double gain_N);
 
   /// Upper end of the zero-force zone (device unattended), normalized pressure in [0, 1 - gap].
-  /// Default 0.05. Values are rounded to 0.001 and kept at least kMinimumGap below saturateAbove.
+  /// Default: ZoneZeroBelow's (vtouchHapticParameters.def). Values are rounded to 0.001 and kept at
+  /// least kMinimumGap below saturateAbove.
   double zeroBelow() const;
-  /// Start of the saturation zone, normalized pressure in [gap, 1]. Default 0.5.
+  /// Start of the saturation zone, normalized pressure in [gap, 1]. Default: ZoneSaturateAbove's.
   double saturateAbove() const;
   /// Sets both thresholds at once (ordered, clamped, rounded to 0.001); emits once if changed.
   void setThresholds(double zeroBelow, double saturateAbove);
 
-  /// Gain k reached in the saturation zone, newtons per unit slope. Default 1 N, range [0, 20] N.
+  /// Gain k reached in the saturation zone, newtons per unit slope. Default and range: ZoneGain's.
   double gain_N() const;
 
   /// The live pressure last given to setLivePressure(), or -1 when none is shown.
@@ -52,8 +55,9 @@ public:
 
   /// Smallest distance kept between the two thresholds, normalized pressure. 0.01.
   static constexpr double kMinimumGap = 0.01;
-  /// Largest gain the spin box accepts, newtons. 20 N.
-  static constexpr double kMaximumGain_N = 20.0;
+  /// Largest gain the spin box accepts, newtons: ZoneGain's maximum (vtouchHapticParameters.def).
+  static constexpr double kMaximumGain_N =
+    vtouch::hapticParameter(vtouch::HapticParameterId::ZoneGain).maximum;
 
   /// The plot, for hosts that want to resize it and for tests that drag its handles.
   qVesselTouchForceZonesPlot* plot() const;

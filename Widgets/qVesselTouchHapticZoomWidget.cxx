@@ -23,7 +23,7 @@ class qVesselTouchHapticZoomWidgetPrivate
 {
 public:
   Ui::qVesselTouchHapticZoomWidget Ui;
-  double Ratio = 1.0;
+  double Ratio = vtouch::hapticParameter(vtouch::HapticParameterId::Zoom).defaultValue;
 
   // Shows Ratio on the controls without letting either echo back. The slider is left alone while
   // it is the source: its position maps to a rounded r whose own position may differ by one step.
@@ -124,5 +124,5 @@ void qVesselTouchHapticZoomWidget::setRatio(double ratio)
 
 void qVesselTouchHapticZoomWidget::resetRatio()
 {
-  this->setRatio(1.0);
+  this->setRatio(vtouch::hapticParameter(vtouch::HapticParameterId::Zoom).defaultValue);
 }

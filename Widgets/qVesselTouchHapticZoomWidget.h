@@ -4,6 +4,8 @@
 #ifndef qVesselTouchHapticZoomWidget_h
 #define qVesselTouchHapticZoomWidget_h
 
+#include "vtouchHapticParameterTable.h"
+
 #include <QScopedPointer>
 #include <QWidget>
 
@@ -18,12 +20,15 @@ public:
   ~qVesselTouchHapticZoomWidget() override;
 
   /// Graphic/haptic ratio r (dimensionless): cursor movement on the screen per unit of hand
-  /// movement. r > 1 magnifies the hand, r < 1 gives fine control. Default 1, range [0.1, 10],
-  /// resolution 0.001 (values are clamped and rounded).
+  /// movement. r > 1 magnifies the hand, r < 1 gives fine control. Default, range and meaning:
+  /// the Zoom row of vtouchHapticParameters.def (1, [0.1, 10]); resolution 0.001 (values are
+  /// clamped and rounded).
   double ratio() const;
 
-  static constexpr double kMinimumRatio = 0.1;
-  static constexpr double kMaximumRatio = 10.0;
+  static constexpr double kMinimumRatio =
+    vtouch::hapticParameter(vtouch::HapticParameterId::Zoom).minimum;
+  static constexpr double kMaximumRatio =
+    vtouch::hapticParameter(vtouch::HapticParameterId::Zoom).maximum;
   /// Slider positions span [0, kSliderSteps]; the middle (kSliderSteps / 2) is r = 1.
   static constexpr int kSliderSteps = 1000;
 

@@ -1,5 +1,7 @@
 #include "vtouchHapticPipeline.h"
 
+#include "vtouchHapticParameterTable.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -147,8 +149,9 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
   out.hand_Device_mm = hand;
 
   // Cursor: hand motion times (mapping x zoom), unless re-indexing.
-  const double zoom = std::clamp(
-    std::isfinite(p.zoom) ? p.zoom : 1.0, HapticParameters::kMinZoom, HapticParameters::kMaxZoom);
+  const double zoom = std::clamp(std::isfinite(p.zoom) ? p.zoom : 1.0,
+    hapticParameter(HapticParameterId::Zoom).minimum,
+    hapticParameter(HapticParameterId::Zoom).maximum);
   const double pxPerMm = std::max(1e-6, p.pixelsPerDeviceMm) * zoom;
   const bool hasPressure = in.capabilities ? in.capabilities->hasPressure : false;
   this->Zones.usePressure = hasPressure;

@@ -1,5 +1,7 @@
 #include "vtouchHapticSession.h"
 
+#include "vtouchHapticParameterTable.h"
+
 #include "vtouchSafeHapticDevice.h"
 #include "vtouchSimulatedDevice.h"
 
@@ -169,8 +171,8 @@ void HapticSession::setParameters(const HapticParameters& parameters)
   std::lock_guard<std::mutex> lock(this->ControlMutex);
   this->ControlParameters = parameters;
   this->ControlParameters.zoom = std::clamp(std::isfinite(parameters.zoom) ? parameters.zoom : 1.0,
-    HapticParameters::kMinZoom,
-    HapticParameters::kMaxZoom);
+    hapticParameter(HapticParameterId::Zoom).minimum,
+    hapticParameter(HapticParameterId::Zoom).maximum);
   this->PublishedParameters.store(this->ControlParameters);
 }
 

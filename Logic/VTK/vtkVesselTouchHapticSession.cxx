@@ -4,6 +4,7 @@
 
 #include "vtouchAgentStateLayout.h"
 #include "vtouchDeviceFactory.h"
+#include "vtouchHapticParameterTable.h"
 #include "vtouchHapticSession.h"
 #include "vtouchPointerDevice.h"
 #include "vtouchSafeHapticDevice.h"
@@ -20,8 +21,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <new>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -65,6 +68,9 @@ class vtkVesselTouchHapticSession::vtkInternals
 {
 public:
   vtouch::HapticSession Session;
+  /// The haptic parameters as set (SetHapticParameter); ApplyProperties publishes them.
+  vtouch::HapticParameters Parameters;
+  std::string AppliedText;
   vtouch::QSkeleton Skeleton;
   bool HasSkeleton = false;
   vtkMTimeType SkeletonTime = 0;
@@ -130,31 +136,7 @@ void vtkVesselTouchHapticSession::ApplyProperties()
 void vtkVesselTouchHapticSession::PushParameters()
 {
   vtouch::HapticSession& s = this->Internals->Session;
-  vtouch::HapticParameters p = s.parameters();
-  p.forceLaw = static_cast<vtouch::ForceLawId>(std::clamp(this->ForceLaw, 0, 4));
-  p.crossfade_s = this->Crossfade;
-  p.ldgfLambda_mm = this->LdgfLambda;
-  p.cohLambda_mm = this->ChangeOfHeightLambda;
-  p.cohZMax_mm = this->ChangeOfHeightZMax; // 0: from the device's resolution
-  // ChangeOfHeightForgetTime is ignored: Hayward & Yi's eqs. 8-9 have no forgetting factor.
-  p.lateralProbe_px = this->LateralProbe;
-  p.proxyStiffness_N_per_m = this->ProxyStiffness;
-  p.proxyDamping_N_s_per_m = this->ProxyDamping;
-  p.proxyTangentDrag = this->ProxyTangentDrag;
-  p.proxyTangentThreshold_N = this->ProxyTangentThreshold;
-  p.proxySnapDrag = this->ProxySnapDrag;
-  p.proxySnapThreshold_N = this->ProxySnapThreshold;
-  p.zoneGain_N = this->ZoneGain;
-  p.zoneZeroBelow = this->ZoneZeroBelow;
-  p.zoneSaturateAbove = this->ZoneSaturateAbove;
-  p.zoom = this->Zoom;
-  p.pixelsPerDeviceMm = this->PixelsPerDeviceMm;
-  p.maxForceRate_N_per_s = this->MaxForceRate;
-  p.contactDwell_s = this->ContactDwell;
-  p.contactApproachAtStart = this->ContactApproachAtStart;
-  p.tracerRule = this->TracerRule;
-  p.slopeForceBudget = this->SlopeForceBudget;
-  s.setParameters(p);
+  s.setParameters(this->Internals->Parameters);
   if (s.captureRadius_px() != this->CaptureRadius)
   {
     s.setCaptureRadius_px(this->CaptureRadius);
@@ -164,6 +146,58 @@ void vtkVesselTouchHapticSession::PushParameters()
     s.setSlopeWindow_mm(this->SlopeWindow);
   }
   this->ApplyCamera();
+}
+
+void vtkVesselTouchHapticSession::SetHapticParameter(const char* name, double value)
+{
+  const vtouch::HapticParameterDescriptor* d = vtouch::findHapticParameter(name);
+  if (!d)
+  {
+    this->Fail(std::string("SetHapticParameter: unknown haptic parameter '") +
+               (name ? name : "(null)") + "' (vtouchHapticParameters.def lists them)");
+    return;
+  }
+  const std::string why = vtouch::checkHapticParameter(*d, value);
+  if (!why.empty())
+  {
+    std::ostringstream kept;
+    kept.precision(10);
+    kept << d->get(this->Internals->Parameters);
+    this->Fail("SetHapticParameter: " + why + "; " + d->name + " stays " + kept.str());
+    return;
+  }
+  if (d->get(this->Internals->Parameters) == value)
+  {
+    return;
+  }
+  d->set(this->Internals->Parameters, value);
+  this->Modified();
+}
+
+double vtkVesselTouchHapticSession::GetHapticParameter(const char* name)
+{
+  const vtouch::HapticParameterDescriptor* d = vtouch::findHapticParameter(name);
+  if (!d)
+  {
+    this->Fail(std::string("GetHapticParameter: unknown haptic parameter '") +
+               (name ? name : "(null)") + "'");
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return d->get(this->Internals->Parameters);
+}
+
+const char* vtkVesselTouchHapticSession::GetAppliedHapticParameters()
+{
+  const vtouch::HapticParameters applied = this->Internals->Session.parameters();
+  std::ostringstream text;
+  text.precision(17);
+  for (const vtouch::HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
+  {
+    text << (&d == vtouch::kHapticParameterDescriptors ? "" : " ") << d.name << '='
+         << d.get(applied);
+  }
+  this->Internals->AppliedText = text.str();
+  return this->Internals->AppliedText.c_str();
 }
 
 bool vtkVesselTouchHapticSession::ApplyCamera()
@@ -394,7 +428,7 @@ bool vtkVesselTouchHapticSession::BuildDevice(bool offline)
     vtouch::SweepHandTrack sweep = vtouch::makeSweepHandTrack(in.Skeleton,
       in.Camera,
       this->SweepPath,
-      this->PixelsPerDeviceMm * this->Zoom,
+      in.Parameters.pixelsPerDeviceMm * in.Parameters.zoom,
       this->SweepSpeed);
     if (!sweep.ok())
     {
@@ -792,10 +826,10 @@ void vtkVesselTouchHapticSession::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "DeviceType: " << this->DeviceType << "\n";
   os << indent << "HandScript: " << this->HandScript << "\n";
-  os << indent << "ForceLaw: " << this->ForceLaw << "\n";
-  os << indent << "Zoom: " << this->Zoom << "\n";
-  os << indent << "ZoneGain: " << this->ZoneGain << " ZoneZeroBelow: " << this->ZoneZeroBelow
-     << " ZoneSaturateAbove: " << this->ZoneSaturateAbove << "\n";
+  for (const vtouch::HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
+  {
+    os << indent << d.name << ": " << d.get(this->Internals->Parameters) << "\n";
+  }
   os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1]
      << "\n";
   os << indent << "Running: " << this->IsRunning() << "\n";

@@ -136,70 +136,21 @@ public:
   vtkSetMacro(MaxForce, double);
   vtkGetMacro(MaxForce, double);
 
-  // --- force law, zones, zoom ---
-  /// 0 LDGF (default), 1 change of height, 2 lateral gradient, 3 constraint proxy, 4 none.
-  vtkSetClampMacro(ForceLaw, int, 0, 4);
-  vtkGetMacro(ForceLaw, int);
-  /// LDGF lambda, mm. Default 0.005.
-  vtkSetMacro(LdgfLambda, double);
-  vtkGetMacro(LdgfLambda, double);
-  /// Change of height: lambda (mm, 0.005), z_max (mm, 1), forgetting time (s, 0.1).
-  vtkSetMacro(ChangeOfHeightLambda, double);
-  vtkGetMacro(ChangeOfHeightLambda, double);
-  vtkSetMacro(ChangeOfHeightZMax, double);
-  vtkGetMacro(ChangeOfHeightZMax, double);
-  vtkSetMacro(ChangeOfHeightForgetTime, double);
-  vtkGetMacro(ChangeOfHeightForgetTime, double);
-  /// Lateral gradient central-difference half width, px. Default 2.
-  vtkSetMacro(LateralProbe, double);
-  vtkGetMacro(LateralProbe, double);
-  /// Constraint proxy coupler: k_c (N/m, 200), b_c (N s/m, 0.1), drag threshold tau_t (N, 0.3,
-  /// used when ProxyTangentDrag is on, default off), snap threshold (N, 1.5, ProxySnapDrag, off).
-  vtkSetMacro(ProxyStiffness, double);
-  vtkGetMacro(ProxyStiffness, double);
-  vtkSetMacro(ProxyDamping, double);
-  vtkGetMacro(ProxyDamping, double);
-  vtkSetMacro(ProxyTangentDrag, bool);
-  vtkGetMacro(ProxyTangentDrag, bool);
-  vtkSetMacro(ProxyTangentThreshold, double);
-  vtkGetMacro(ProxyTangentThreshold, double);
-  vtkSetMacro(ProxySnapDrag, bool);
-  vtkGetMacro(ProxySnapDrag, bool);
-  vtkSetMacro(ProxySnapThreshold, double);
-  vtkGetMacro(ProxySnapThreshold, double);
-  /// Force zones k(P): gain (N, default 1), end of the zero zone and start of the saturation zone
-  /// (normalized pressure, 0.05 and 0.5).
-  vtkSetMacro(ZoneGain, double);
-  vtkGetMacro(ZoneGain, double);
-  vtkSetMacro(ZoneZeroBelow, double);
-  vtkGetMacro(ZoneZeroBelow, double);
-  vtkSetMacro(ZoneSaturateAbove, double);
-  vtkGetMacro(ZoneSaturateAbove, double);
-  /// Haptic zoom r = cursor movement / hand movement, [0.1, 10]. Default 1.
-  vtkSetClampMacro(Zoom, double, 0.1, 10.0);
-  vtkGetMacro(Zoom, double);
-  /// Cursor pixels per hand millimetre at zoom 1. Default 4.
-  vtkSetMacro(PixelsPerDeviceMm, double);
-  vtkGetMacro(PixelsPerDeviceMm, double);
-  /// Time-domain interpolation bound, N/s (default 100); law crossfade, s (default 0.005).
-  vtkSetMacro(MaxForceRate, double);
-  vtkGetMacro(MaxForceRate, double);
-  vtkSetMacro(Crossfade, double);
-  vtkGetMacro(Crossfade, double);
-  /// Contact (Yi & Hayward 3.2, vtouch::ContactGate): dwell within the capture radius before the
-  /// agent is captured, s (default 0.05; 0 = immediate); whether the cursor must first come from
-  /// outside every capture radius after Start (default on). After a click it always must.
-  vtkSetMacro(ContactDwell, double);
-  vtkGetMacro(ContactDwell, double);
-  vtkSetMacro(ContactApproachAtStart, bool);
-  vtkGetMacro(ContactApproachAtStart, bool);
-  /// Tracing rule: 0 offset (default), 1 the paper's per-tick movement rule (3.2.1).
-  vtkSetClampMacro(TracerRule, int, 0, 1);
-  vtkGetMacro(TracerRule, int);
-  /// Fraction of the device's force limit the slope laws may reach where dl -> 0 (lambda sized
-  /// from it, 4.1); 0 = lambda as set. Default 0.9.
-  vtkSetMacro(SlopeForceBudget, double);
-  vtkGetMacro(SlopeForceBudget, double);
+  // --- haptic parameters (force law, zones, zoom, tracer, proxy, ...) ---
+  /// Sets the haptic parameter `name` (a row of Logic/Haptics/vtouchHapticParameters.def, e.g.
+  /// "LdgfLambda", "ProxyStiffness", "Zoom"; the proxy's properties of the same names call this
+  /// through their initial_string). A value out of the row's range, not a whole number where one
+  /// is needed, or an unknown name is refused: vtkErrorMacro (also GetLastErrorMessage) naming
+  /// the parameter, the value, the range and the unit, and the old value stays. ApplyProperties()
+  /// publishes it to the haptic thread.
+  void SetHapticParameter(const char* name, double value);
+  /// The value set for `name` (the table's default until set); NaN and vtkErrorMacro for an
+  /// unknown name.
+  double GetHapticParameter(const char* name);
+  /// The parameters the haptic session holds now (what the haptic thread reads after
+  /// ApplyProperties), as text: "Name=value" per parameter in table order, separated by spaces,
+  /// values with 17 significant digits.
+  const char* GetAppliedHapticParameters();
 
   // --- running ---
   /// Real-time loop rate, Hz, [100, 10000]. Default 1000.
@@ -324,30 +275,6 @@ private:
   char* ReplayFileName = nullptr;
   char* HidPath = nullptr;
   double MaxForce = 3.0;
-
-  int ForceLaw = 0;
-  double LdgfLambda = 0.005;
-  double ChangeOfHeightLambda = 0.005;
-  double ChangeOfHeightZMax = 0.0;       // 0: 2 counts of the device's position resolution
-  double ChangeOfHeightForgetTime = 0.1; // ignored (eqs. 8-9 have none); old state files set it
-  double LateralProbe = 2.0;
-  double ProxyStiffness = 200.0;
-  double ProxyDamping = 0.1;
-  bool ProxyTangentDrag = false;
-  double ProxyTangentThreshold = 0.3;
-  bool ProxySnapDrag = false;
-  double ProxySnapThreshold = 1.5;
-  double ZoneGain = 1.0;
-  double ZoneZeroBelow = 0.05;
-  double ZoneSaturateAbove = 0.5;
-  double Zoom = 1.0;
-  double PixelsPerDeviceMm = 4.0;
-  double MaxForceRate = 100.0;
-  double ContactDwell = 0.05;
-  bool ContactApproachAtStart = true;
-  int TracerRule = 0;
-  double SlopeForceBudget = 0.9;
-  double Crossfade = 0.005;
 
   double LoopRate = 1000.0;
   int LogCapacity = 60000;

@@ -99,11 +99,12 @@ public:
   pqVesselTouchPanelValues fromWidgets() const
   {
     pqVesselTouchPanelValues v;
-    v.forceLaw = static_cast<int>(this->Ui.forceLawWidget->forceLaw());
     v.law = this->Ui.forceLawWidget->parameters();
-    v.zoom = this->Ui.zoomWidget->ratio();
-    v.zoneZeroBelow = this->Ui.zonesWidget->zeroBelow();
-    v.zoneSaturateAbove = this->Ui.zonesWidget->saturateAbove();
+    vtouch::HapticParameters& haptic = v.law.haptic;
+    haptic.forceLaw = static_cast<vtouch::ForceLawId>(this->Ui.forceLawWidget->forceLaw());
+    haptic.zoom = this->Ui.zoomWidget->ratio();
+    haptic.zoneZeroBelow = this->Ui.zonesWidget->zeroBelow();
+    haptic.zoneSaturateAbove = this->Ui.zonesWidget->saturateAbove();
     v.deviceId = this->Ui.deviceWidget->currentDeviceId();
     return v;
   }
@@ -111,13 +112,14 @@ public:
   void toWidgets(const pqVesselTouchPanelValues& v, double zoneGain_N)
   {
     this->Syncing = true;
-    if (v.forceLaw >= 0 && v.forceLaw < qVesselTouchForceLawWidget::kForceLawCount)
+    if (v.forceLaw() >= 0 && v.forceLaw() < qVesselTouchForceLawWidget::kForceLawCount)
     {
-      this->Ui.forceLawWidget->setForceLaw(v.forceLaw);
+      this->Ui.forceLawWidget->setForceLaw(v.forceLaw());
     }
+    // The force-law widget keeps every haptic parameter (those without a widget ride along).
     this->Ui.forceLawWidget->setParameters(v.law);
-    this->Ui.zoomWidget->setRatio(v.zoom);
-    this->Ui.zonesWidget->setThresholds(v.zoneZeroBelow, v.zoneSaturateAbove);
+    this->Ui.zoomWidget->setRatio(v.law.haptic.zoom);
+    this->Ui.zonesWidget->setThresholds(v.law.haptic.zoneZeroBelow, v.law.haptic.zoneSaturateAbove);
     this->Ui.zonesWidget->setGain_N(v.activeGain_N(zoneGain_N));
     this->Ui.deviceWidget->setCurrentDeviceId(v.deviceId);
     this->Syncing = false;
@@ -168,7 +170,8 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
       pqInternals& internals = *this->Internals;
       pqVesselTouchPanelValues defaults;
       defaults.deviceId = internals.Ui.deviceWidget->currentDeviceId(); // not a force setting
-      internals.toWidgets(defaults, defaults.activeGain_N(1.0));
+      internals.toWidgets(
+        defaults, defaults.activeGain_N(qVesselTouchForceLawParameters::defaultGain_N()));
       this->onWidgetsEdited();
     });
 
@@ -203,7 +206,7 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
   {
     saved.load(*settings);
   }
-  in.toWidgets(saved, saved.activeGain_N(1.0));
+  in.toWidgets(saved, saved.activeGain_N(qVesselTouchForceLawParameters::defaultGain_N()));
   this->connectWidgets();
 
   QObject::connect(&pqActiveObjects::instance(),

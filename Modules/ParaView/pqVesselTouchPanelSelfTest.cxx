@@ -33,6 +33,7 @@
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 #include "vtkVesselTouchHapticSession.h"
+#include "vtouchHapticParameterTable.h"
 
 #include <QCoreApplication>
 #include <QFile>
@@ -40,6 +41,7 @@
 #include <QJsonDocument>
 #include <QMouseEvent>
 #include <QPushButton>
+#include <QStringList>
 #include <QTimer>
 #include <QWidget>
 #include <QtDebug>
@@ -115,6 +117,8 @@ void pqVesselTouchPanelSelfTest::deleteSession()
   }
   pqVesselTouchSessionBinding* binding = this->Panel->sessionBinding();
   this->Report.insert("session_at_startup", binding->proxy() != nullptr);
+  // The session as the panel's default values set it (a fresh user: no saved settings).
+  this->Report.insert("values_at_startup", this->sessionValues());
   if (binding->source())
   {
     pqApplicationCore::instance()->getObjectBuilder()->destroy(binding->source());
@@ -134,7 +138,7 @@ void pqVesselTouchPanelSelfTest::setWidgets()
   panel.forceLawWidget()->setForceLaw(qVesselTouchForceLawWidget::ChangeOfHeight);
   qVesselTouchForceLawParameters law = panel.forceLawWidget()->parameters();
   law.cohGain_N = 0.7;
-  law.cohLambda_mm = 0.02;
+  law.haptic.cohLambda_mm = 0.02;
   panel.forceLawWidget()->setParameters(law);
   panel.zoomWidget()->setRatio(2.5);
   panel.zonesWidget()->setThresholds(0.1, 0.6);
@@ -264,8 +268,10 @@ void pqVesselTouchPanelSelfTest::changeWhileRunning()
     pqVesselTouchAgentDisplay* display = agent->display();
     agentReport.insert("checked", agent->isChecked());
     agentReport.insert("enabled", display->isEnabled());
-    agentReport.insert("bound_to_session", display->session() == this->Panel->sessionBinding()->proxy());
-    agentReport.insert("frames", static_cast<double>(display->fullRenders() + display->cachedFrames()));
+    agentReport.insert(
+      "bound_to_session", display->session() == this->Panel->sessionBinding()->proxy());
+    agentReport.insert(
+      "frames", static_cast<double>(display->fullRenders() + display->cachedFrames()));
   }
   this->Report.insert("agent_display_running", agentReport);
   this->Panel->zoomWidget()->setRatio(1.5);
@@ -333,7 +339,7 @@ void pqVesselTouchPanelSelfTest::saveAndLoadState()
         QJsonObject saved;
         for (const char* key : { "ForceLaw",
                "CohGain_N",
-               "CohLambda_mm",
+               "ChangeOfHeightLambda",
                "Zoom",
                "ZoneZeroBelow",
                "ZoneSaturateAbove",
@@ -379,25 +385,23 @@ QJsonObject pqVesselTouchPanelSelfTest::sessionValues() const
   {
     return values;
   }
-  for (const char* name : { "ForceLaw", "DeviceType" })
+  values.insert("DeviceType", vtkSMPropertyHelper(session, "DeviceType").GetAsInt());
+  for (const vtouch::HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
   {
-    values.insert(name, vtkSMPropertyHelper(session, name).GetAsInt());
+    values.insert(d.name, vtkSMPropertyHelper(session, d.name).GetAsDouble());
   }
-  for (const char* name :
-    { "ChangeOfHeightLambda", "ZoneGain", "Zoom", "ZoneZeroBelow", "ZoneSaturateAbove" })
-  {
-    values.insert(name, vtkSMPropertyHelper(session, name).GetAsDouble());
-  }
-  // What the running session really uses: the VTK object behind the proxy (builtin session).
+  // What the running session really uses: the haptic parameters the C++ session holds, read
+  // from the VTK object behind the proxy (builtin session).
   if (auto* vtk = vtkVesselTouchHapticSession::SafeDownCast(session->GetClientSideObject()))
   {
     QJsonObject object;
-    object.insert("ForceLaw", vtk->GetForceLaw());
-    object.insert("ChangeOfHeightLambda", vtk->GetChangeOfHeightLambda());
-    object.insert("ZoneGain", vtk->GetZoneGain());
-    object.insert("Zoom", vtk->GetZoom());
-    object.insert("ZoneZeroBelow", vtk->GetZoneZeroBelow());
-    object.insert("ZoneSaturateAbove", vtk->GetZoneSaturateAbove());
+    const QStringList applied =
+      QString::fromUtf8(vtk->GetAppliedHapticParameters()).split(' ', Qt::SkipEmptyParts);
+    for (const QString& pair : applied)
+    {
+      const int at = pair.indexOf('=');
+      object.insert(pair.left(at), pair.mid(at + 1).toDouble());
+    }
     object.insert("DeviceType", vtk->GetDeviceType());
     values.insert("vtk_object", object);
   }

@@ -6,45 +6,42 @@
 
 #include <QSettings>
 
+#include <limits>
+
 namespace
 {
+using vtouch::HapticParameterDescriptor;
 constexpr int kLdgf = 0;
 constexpr int kChangeOfHeight = 1;
 constexpr int kLateralGradient = 2;
 const QString kPrefix = QStringLiteral("VesselTouch/");
-/// The session properties writeToProxy() sets (HidPath aside).
-const char* const kProxyProperties[] = { "ForceLaw",
-  "LdgfLambda",
-  "ChangeOfHeightLambda",
-  "ChangeOfHeightZMax",
-  "ChangeOfHeightForgetTime",
-  "LateralProbe",
-  "ProxyStiffness",
-  "ProxyDamping",
-  "ProxyTangentDrag",
-  "ProxyTangentThreshold",
-  "ProxySnapDrag",
-  "ProxySnapThreshold",
-  "ZoneGain",
-  "ZoneZeroBelow",
-  "ZoneSaturateAbove",
-  "Zoom",
-  "DeviceType" };
-
-template<typename T>
-void loadValue(const QSettings& settings, const char* key, T& value)
+/// The per-law gains under their settings keys (the session has one gain, ZoneGain).
+struct GainKey
 {
-  const QVariant stored = settings.value(kPrefix + QLatin1String(key));
-  if (stored.isValid() && stored.canConvert<T>())
-  {
-    value = stored.value<T>();
-  }
+  const char* Key;
+  double qVesselTouchForceLawParameters::*Gain;
+};
+const GainKey kGainKeys[] = { { "LdgfGain_N", &qVesselTouchForceLawParameters::ldgfGain_N },
+  { "CohGain_N", &qVesselTouchForceLawParameters::cohGain_N },
+  { "LateralGain_N", &qVesselTouchForceLawParameters::lateralGain_N } };
+
+/// A stored value of `key`, or NaN when there is none.
+double storedValue(const QSettings& settings, const QString& key)
+{
+  bool ok = false;
+  const double value = settings.value(kPrefix + key).toDouble(&ok);
+  return ok ? value : std::numeric_limits<double>::quiet_NaN();
 }
 } // namespace
 
+int pqVesselTouchPanelValues::forceLaw() const
+{
+  return static_cast<int>(this->law.haptic.forceLaw);
+}
+
 double pqVesselTouchPanelValues::activeGain_N(double fallback_N) const
 {
-  switch (this->forceLaw)
+  switch (this->forceLaw())
   {
     case kLdgf:
       return this->law.ldgfGain_N;
@@ -59,7 +56,7 @@ double pqVesselTouchPanelValues::activeGain_N(double fallback_N) const
 
 void pqVesselTouchPanelValues::setActiveGain_N(double gain_N)
 {
-  switch (this->forceLaw)
+  switch (this->forceLaw())
   {
     case kLdgf:
       this->law.ldgfGain_N = gain_N;
@@ -81,22 +78,19 @@ void pqVesselTouchPanelValues::writeToProxy(vtkSMProxy* session, double zoneGain
   {
     return;
   }
-  vtkSMPropertyHelper(session, "ForceLaw").Set(this->forceLaw);
-  vtkSMPropertyHelper(session, "LdgfLambda").Set(this->law.ldgfLambda_mm);
-  vtkSMPropertyHelper(session, "ChangeOfHeightLambda").Set(this->law.cohLambda_mm);
-  vtkSMPropertyHelper(session, "ChangeOfHeightZMax").Set(this->law.cohZMax_mm);
-  vtkSMPropertyHelper(session, "ChangeOfHeightForgetTime").Set(this->law.cohForgetTime_s);
-  vtkSMPropertyHelper(session, "LateralProbe").Set(this->law.lateralProbe_px);
-  vtkSMPropertyHelper(session, "ProxyStiffness").Set(this->law.proxyStiffness_N_per_m);
-  vtkSMPropertyHelper(session, "ProxyDamping").Set(this->law.proxyDamping_N_s_per_m);
-  vtkSMPropertyHelper(session, "ProxyTangentDrag").Set(this->law.proxyTangentDrag ? 1 : 0);
-  vtkSMPropertyHelper(session, "ProxyTangentThreshold").Set(this->law.proxyTangentThreshold_N);
-  vtkSMPropertyHelper(session, "ProxySnapDrag").Set(this->law.proxySnapDrag ? 1 : 0);
-  vtkSMPropertyHelper(session, "ProxySnapThreshold").Set(this->law.proxySnapThreshold_N);
-  vtkSMPropertyHelper(session, "ZoneGain").Set(zoneGain_N);
-  vtkSMPropertyHelper(session, "ZoneZeroBelow").Set(this->zoneZeroBelow);
-  vtkSMPropertyHelper(session, "ZoneSaturateAbove").Set(this->zoneSaturateAbove);
-  vtkSMPropertyHelper(session, "Zoom").Set(this->zoom);
+  vtouch::HapticParameters haptic = this->law.haptic;
+  haptic.zoneGain_N = zoneGain_N;
+  for (const HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
+  {
+    if (d.kind == vtouch::HapticParameterKind::Real)
+    {
+      vtkSMPropertyHelper(session, d.name).Set(d.get(haptic));
+    }
+    else
+    {
+      vtkSMPropertyHelper(session, d.name).Set(static_cast<int>(d.get(haptic)));
+    }
+  }
   vtkSMPropertyHelper(session, "DeviceType").Set(deviceType(this->deviceId));
   const QString path = hidPath(this->deviceId);
   if (!path.isEmpty())
@@ -109,27 +103,18 @@ double pqVesselTouchPanelValues::readFromProxy(vtkSMProxy* session)
 {
   if (!session)
   {
-    return this->activeGain_N(1.0);
+    return this->activeGain_N(qVesselTouchForceLawParameters::defaultGain_N());
   }
-  this->forceLaw = vtkSMPropertyHelper(session, "ForceLaw").GetAsInt();
-  this->law.ldgfLambda_mm = vtkSMPropertyHelper(session, "LdgfLambda").GetAsDouble();
-  this->law.cohLambda_mm = vtkSMPropertyHelper(session, "ChangeOfHeightLambda").GetAsDouble();
-  this->law.cohZMax_mm = vtkSMPropertyHelper(session, "ChangeOfHeightZMax").GetAsDouble();
-  this->law.cohForgetTime_s =
-    vtkSMPropertyHelper(session, "ChangeOfHeightForgetTime").GetAsDouble();
-  this->law.lateralProbe_px = vtkSMPropertyHelper(session, "LateralProbe").GetAsDouble();
-  this->law.proxyStiffness_N_per_m = vtkSMPropertyHelper(session, "ProxyStiffness").GetAsDouble();
-  this->law.proxyDamping_N_s_per_m = vtkSMPropertyHelper(session, "ProxyDamping").GetAsDouble();
-  this->law.proxyTangentDrag = vtkSMPropertyHelper(session, "ProxyTangentDrag").GetAsInt() != 0;
-  this->law.proxyTangentThreshold_N =
-    vtkSMPropertyHelper(session, "ProxyTangentThreshold").GetAsDouble();
-  this->law.proxySnapDrag = vtkSMPropertyHelper(session, "ProxySnapDrag").GetAsInt() != 0;
-  this->law.proxySnapThreshold_N = vtkSMPropertyHelper(session, "ProxySnapThreshold").GetAsDouble();
-  const double zoneGain_N = vtkSMPropertyHelper(session, "ZoneGain").GetAsDouble();
+  for (const HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
+  {
+    const double value = vtkSMPropertyHelper(session, d.name).GetAsDouble();
+    if (vtouch::checkHapticParameter(d, value).empty())
+    {
+      d.set(this->law.haptic, value);
+    }
+  }
+  const double zoneGain_N = this->law.haptic.zoneGain_N;
   this->setActiveGain_N(zoneGain_N);
-  this->zoneZeroBelow = vtkSMPropertyHelper(session, "ZoneZeroBelow").GetAsDouble();
-  this->zoneSaturateAbove = vtkSMPropertyHelper(session, "ZoneSaturateAbove").GetAsDouble();
-  this->zoom = vtkSMPropertyHelper(session, "Zoom").GetAsDouble();
   switch (vtkSMPropertyHelper(session, "DeviceType").GetAsInt())
   {
     case 1:
@@ -151,48 +136,42 @@ double pqVesselTouchPanelValues::readFromProxy(vtkSMProxy* session)
 
 void pqVesselTouchPanelValues::save(QSettings& settings) const
 {
-  settings.setValue(kPrefix + "ForceLaw", this->forceLaw);
-  settings.setValue(kPrefix + "LdgfGain_N", this->law.ldgfGain_N);
-  settings.setValue(kPrefix + "LdgfLambda_mm", this->law.ldgfLambda_mm);
-  settings.setValue(kPrefix + "CohGain_N", this->law.cohGain_N);
-  settings.setValue(kPrefix + "CohLambda_mm", this->law.cohLambda_mm);
-  settings.setValue(kPrefix + "CohZMax_mm", this->law.cohZMax_mm);
-  settings.setValue(kPrefix + "CohForgetTime_s", this->law.cohForgetTime_s);
-  settings.setValue(kPrefix + "LateralGain_N", this->law.lateralGain_N);
-  settings.setValue(kPrefix + "LateralProbe_px", this->law.lateralProbe_px);
-  settings.setValue(kPrefix + "ProxyStiffness_N_per_m", this->law.proxyStiffness_N_per_m);
-  settings.setValue(kPrefix + "ProxyDamping_N_s_per_m", this->law.proxyDamping_N_s_per_m);
-  settings.setValue(kPrefix + "ProxyTangentDrag", this->law.proxyTangentDrag);
-  settings.setValue(kPrefix + "ProxyTangentThreshold_N", this->law.proxyTangentThreshold_N);
-  settings.setValue(kPrefix + "ProxySnapDrag", this->law.proxySnapDrag);
-  settings.setValue(kPrefix + "ProxySnapThreshold_N", this->law.proxySnapThreshold_N);
-  settings.setValue(kPrefix + "Zoom", this->zoom);
-  settings.setValue(kPrefix + "ZoneZeroBelow", this->zoneZeroBelow);
-  settings.setValue(kPrefix + "ZoneSaturateAbove", this->zoneSaturateAbove);
+  for (const HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
+  {
+    settings.setValue(kPrefix + QLatin1String(d.name), d.get(this->law.haptic));
+  }
+  for (const GainKey& gain : kGainKeys)
+  {
+    settings.setValue(kPrefix + QLatin1String(gain.Key), this->law.*(gain.Gain));
+  }
   settings.setValue(kPrefix + "Device", this->deviceId);
 }
 
 void pqVesselTouchPanelValues::load(const QSettings& settings)
 {
-  loadValue(settings, "ForceLaw", this->forceLaw);
-  loadValue(settings, "LdgfGain_N", this->law.ldgfGain_N);
-  loadValue(settings, "LdgfLambda_mm", this->law.ldgfLambda_mm);
-  loadValue(settings, "CohGain_N", this->law.cohGain_N);
-  loadValue(settings, "CohLambda_mm", this->law.cohLambda_mm);
-  loadValue(settings, "CohZMax_mm", this->law.cohZMax_mm);
-  loadValue(settings, "CohForgetTime_s", this->law.cohForgetTime_s);
-  loadValue(settings, "LateralGain_N", this->law.lateralGain_N);
-  loadValue(settings, "LateralProbe_px", this->law.lateralProbe_px);
-  loadValue(settings, "ProxyStiffness_N_per_m", this->law.proxyStiffness_N_per_m);
-  loadValue(settings, "ProxyDamping_N_s_per_m", this->law.proxyDamping_N_s_per_m);
-  loadValue(settings, "ProxyTangentDrag", this->law.proxyTangentDrag);
-  loadValue(settings, "ProxyTangentThreshold_N", this->law.proxyTangentThreshold_N);
-  loadValue(settings, "ProxySnapDrag", this->law.proxySnapDrag);
-  loadValue(settings, "ProxySnapThreshold_N", this->law.proxySnapThreshold_N);
-  loadValue(settings, "Zoom", this->zoom);
-  loadValue(settings, "ZoneZeroBelow", this->zoneZeroBelow);
-  loadValue(settings, "ZoneSaturateAbove", this->zoneSaturateAbove);
-  loadValue(settings, "Device", this->deviceId);
+  for (const HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
+  {
+    const double value = storedValue(settings, QLatin1String(d.name));
+    if (vtouch::checkHapticParameter(d, value).empty())
+    {
+      d.set(this->law.haptic, value);
+    }
+  }
+  const HapticParameterDescriptor& gainRow =
+    vtouch::hapticParameter(vtouch::HapticParameterId::ZoneGain);
+  for (const GainKey& gain : kGainKeys)
+  {
+    const double value = storedValue(settings, QLatin1String(gain.Key));
+    if (vtouch::checkHapticParameter(gainRow, value).empty())
+    {
+      this->law.*(gain.Gain) = value;
+    }
+  }
+  const QVariant device = settings.value(kPrefix + "Device");
+  if (device.isValid())
+  {
+    this->deviceId = device.toString();
+  }
 }
 
 bool pqVesselTouchPanelValues::proxyHasDefaults(vtkSMProxy* session)
@@ -201,15 +180,16 @@ bool pqVesselTouchPanelValues::proxyHasDefaults(vtkSMProxy* session)
   {
     return false;
   }
-  for (const char* name : kProxyProperties)
+  for (const HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
   {
-    vtkSMProperty* property = session->GetProperty(name);
+    vtkSMProperty* property = session->GetProperty(d.name);
     if (property && !property->IsValueDefault())
     {
       return false;
     }
   }
-  return true;
+  vtkSMProperty* device = session->GetProperty("DeviceType");
+  return !device || device->IsValueDefault();
 }
 
 int pqVesselTouchPanelValues::deviceType(const QString& deviceId)

@@ -1,6 +1,8 @@
-// What the VesselTouch panel edits (force law and its parameters, haptic zoom, force zones,
-// device), in one plain struct that travels between the widgets, the session proxy and the
-// user's settings ("VesselTouch/..." keys), so that each mapping is written once.
+// What the VesselTouch panel edits (the haptic parameters: force law and its parameters, haptic
+// zoom, force zones...; the per-law gains; the device), in one plain struct that travels between
+// the widgets, the session proxy and the user's settings ("VesselTouch/..." keys). The haptic
+// parameters are written, read, saved and loaded by looping over their one table
+// (vtouchHapticParameters.def): no parameter is named here.
 #ifndef pqVesselTouchPanelValues_h
 #define pqVesselTouchPanelValues_h
 
@@ -13,33 +15,28 @@ class vtkSMProxy;
 
 struct pqVesselTouchPanelValues
 {
-  /// Force law, the session's ForceLaw value (0 LDGF, 1 change of height, 2 lateral gradient,
-  /// 3 constraint proxy). Default 0.
-  int forceLaw = 0;
-  /// Every law's parameters (the widget's struct and defaults).
+  /// Every haptic parameter (law.haptic, the table's defaults) and the gain of each law.
   qVesselTouchForceLawParameters law;
-  /// Haptic zoom r, [0.1, 10]. Default 1.
-  double zoom = 1.0;
-  /// Force zones thresholds (normalized pressure). Defaults 0.05 and 0.5.
-  double zoneZeroBelow = 0.05;
-  double zoneSaturateAbove = 0.5;
   /// Device id as the device widget names it: "simulated", "pointer", "replay" or
   /// "hid:<hidapi path>". Default "simulated".
   QString deviceId = QStringLiteral("simulated");
 
+  /// The force law, the session's ForceLaw value (law.haptic.forceLaw).
+  int forceLaw() const;
   /// The gain k of the current law, N (the session's ZoneGain); the constraint proxy has no gain
   /// of its own and keeps `fallback_N`.
   double activeGain_N(double fallback_N) const;
   /// Sets the gain of the current law (no-op for the constraint proxy).
   void setActiveGain_N(double gain_N);
 
-  /// Writes every value into the session proxy's properties (no UpdateVTKObjects).
-  /// `zoneGain_N` is the session's ZoneGain.
+  /// Writes every haptic parameter and the device into the session proxy's properties (no
+  /// UpdateVTKObjects); the session's ZoneGain is `zoneGain_N`.
   void writeToProxy(vtkSMProxy* session, double zoneGain_N) const;
-  /// Reads the values from the session proxy's properties; returns its ZoneGain (N).
+  /// Reads them from the session proxy's properties; returns its ZoneGain (N).
   double readFromProxy(vtkSMProxy* session);
 
-  /// Saves under "VesselTouch/" in `settings`; load() leaves values without a key unchanged.
+  /// Saves under "VesselTouch/" in `settings` (a haptic parameter under its property name);
+  /// load() leaves values without a key, or out of their range, unchanged.
   void save(QSettings& settings) const;
   void load(const QSettings& settings);
 

@@ -191,7 +191,7 @@ void pqVesselTouchPointerInteraction::movePointer(QWidget* widget, double x, dou
   }
   vtouch::ViewPointerMapping& mapping = this->Internals->Mapping;
   mapping.setWidgetSize(widget->width(), widget->height(), widget->devicePixelRatioF());
-  mapping.setPixelsPerDeviceMm(object->GetPixelsPerDeviceMm());
+  mapping.setPixelsPerDeviceMm(object->GetHapticParameter("PixelsPerDeviceMm"));
   const vtouch::Vec2 device_mm = mapping.widgetToDevice_mm({ x, y });
   object->SetPointerPosition(device_mm.x, device_mm.y);
   if (!this->Internals->Pressed)

@@ -155,7 +155,13 @@ s.ResetCamera(direction=(0, 1, 0), view_up=(0, 0, 1))
 
 # Laws, zoom and zones reach the session.
 s.SetForceLaw("ChangeOfHeight", lambda_mm=0.01)
-s.SetZoom(20.0)
+try:  # out of the Zoom parameter's range: refused (no silent clamp), the zoom stays
+    s.SetZoom(20.0)
+    check.true(False, "zoom 20 is refused")
+except ValueError as error:
+    check.true("[0.1, 10]" in str(error), "the refusal gives the range: %s" % error)
+check.equal(s.GetHapticParameters()["Zoom"], 1.0, "the refused zoom kept 1")
+s.SetZoom(10.0)
 check.equal(s.proxy.ForceLaw, "Change of height", "force law set")
 check.near(s.proxy.GetProperty("ChangeOfHeightLambda").GetData(), 0.01, 1e-12, "lambda set")
 log_coh = s.RunOffline(1.0)

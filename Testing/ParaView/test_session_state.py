@@ -54,6 +54,8 @@ out = {"found": s is not None}
 if s is not None:
     for name in %r:
         out[name] = s.GetProperty(name).SMProperty.GetElement(0)
+    s.UpdatePropertyInformation()
+    out["applied"] = s.GetProperty("AppliedHapticParametersInfo").GetData()
     inp = s.Input
     out["input_xml"] = inp.GetXMLName() if inp is not None else None
     out["input_port"] = getattr(inp, "Port", 0) if inp is not None else None
@@ -72,6 +74,12 @@ if line:
             got = got[0] if got else None
         check.true(got is not None and abs(float(got) - value) < 1e-9,
                    "%s restored: %r (expected %r)" % (name, got, value))
+    applied = dict(p.split("=", 1) for p in str(loaded.get("applied", "")).split())
+    for name, value in expected.items():
+        if name in applied:  # the haptic parameters: in the C++ session too, not only the proxy
+            check.true(abs(float(applied[name]) - value) < 1e-9,
+                       "%s reaches the loaded C++ session: %r" % (name, applied[name]))
+    check.true(len(applied) >= 40, "the loaded session reports its haptic parameters")
     check.equal(loaded.get("input_xml"), "VesselPhantom", "the centerline input restored")
     check.equal(loaded.get("input_port"), 1, "port 1 (the analytic centerline)")
 

@@ -31,13 +31,39 @@ private:
 private slots:
   void defaultsMatchTheHapticLogic()
   {
+    // Every parameter the widget shows starts at the table's default and offers the table's
+    // range (vtouchHapticParameters.def), as the session proxy and Python do.
     qVesselTouchForceLawWidget w;
     QCOMPARE(w.forceLaw(), qVesselTouchForceLawWidget::Ldgf);
     QCOMPARE(currentPage(w), QStringLiteral("ldgfPage"));
     QVERIFY(w.parameters() == qVesselTouchForceLawParameters());
-    QCOMPARE(w.parameters().ldgfLambda_mm, 0.01);
-    QCOMPARE(w.parameters().proxyStiffness_N_per_m, 300.0);
-    QCOMPARE(child<QDoubleSpinBox>(w, "ldgfLambdaSpinBox")->value(), 0.01);
+    for (const vtouch::HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
+    {
+      QCOMPARE(d.get(w.parameters().haptic), d.defaultValue);
+    }
+    const struct
+    {
+      const char* SpinBox;
+      vtouch::HapticParameterId Row;
+    } shown[] = { { "ldgfGainSpinBox", vtouch::HapticParameterId::ZoneGain },
+      { "ldgfLambdaSpinBox", vtouch::HapticParameterId::LdgfLambda },
+      { "cohLambdaSpinBox", vtouch::HapticParameterId::ChangeOfHeightLambda },
+      { "cohZMaxSpinBox", vtouch::HapticParameterId::ChangeOfHeightZMax },
+      { "lateralProbeSpinBox", vtouch::HapticParameterId::LateralProbe },
+      { "proxyStiffnessSpinBox", vtouch::HapticParameterId::ProxyStiffness },
+      { "proxyDampingSpinBox", vtouch::HapticParameterId::ProxyDamping },
+      { "proxyKappaLowSpinBox", vtouch::HapticParameterId::ProxyKappaLow },
+      { "proxyKappaHighSpinBox", vtouch::HapticParameterId::ProxyKappaHigh } };
+    for (const auto& s : shown)
+    {
+      const vtouch::HapticParameterDescriptor& d = vtouch::hapticParameter(s.Row);
+      const QDoubleSpinBox* box = child<QDoubleSpinBox>(w, s.SpinBox);
+      QCOMPARE(box->value(), d.defaultValue);
+      QCOMPARE(box->minimum(), d.minimum);
+      QCOMPARE(box->maximum(), d.maximum);
+    }
+    QCOMPARE(w.parameters().haptic.ldgfLambda_mm, 0.005);          // the drift of issue 18
+    QCOMPARE(w.parameters().haptic.proxyStiffness_N_per_m, 200.0); // is gone
     QCOMPARE(child<QDoubleSpinBox>(w, "proxyStiffnessSpinBox")->suffix(), QStringLiteral(" N/m"));
     QCOMPARE(child<QDoubleSpinBox>(w, "proxyDampingSpinBox")->suffix(), QStringLiteral(" N·s/m"));
     QCOMPARE(w.presetName(), QStringLiteral("Default"));
@@ -87,7 +113,7 @@ private slots:
     QVERIFY(w.applyPreset(QStringLiteral("Firm")));
     QCOMPARE(spy.count(), 1);
     QCOMPARE(w.parameters().ldgfGain_N, 2.0);
-    QCOMPARE(w.parameters().ldgfLambda_mm, 0.005);
+    QCOMPARE(w.parameters().haptic.ldgfLambda_mm, 0.0025);
     QCOMPARE(child<QDoubleSpinBox>(w, "ldgfGainSpinBox")->value(), 2.0);
     QCOMPARE(w.presetName(), QStringLiteral("Firm"));
     QCOMPARE(child<QComboBox>(w, "presetComboBox")->currentText(), QStringLiteral("Firm"));
@@ -111,7 +137,7 @@ private slots:
     QVERIFY(qVesselTouchForceLawWidget::presetParameters(
       qVesselTouchForceLawWidget::ChangeOfHeight, QStringLiteral("Gentle"), gentle));
     QVERIFY(w.parameters() == gentle);
-    QCOMPARE(w.parameters().cohZMax_mm, 2.0);
+    QCOMPARE(w.parameters().haptic.cohZMax_mm, 2.0);
     QCOMPARE(child<QDoubleSpinBox>(w, "cohZMaxSpinBox")->value(), 2.0);
   }
 
@@ -121,7 +147,7 @@ private slots:
     QSignalSpy spy(&w, &qVesselTouchForceLawWidget::parametersChanged);
     child<QDoubleSpinBox>(w, "ldgfLambdaSpinBox")->setValue(0.02);
     QCOMPARE(spy.count(), 1);
-    QCOMPARE(w.parameters().ldgfLambda_mm, 0.02);
+    QCOMPARE(w.parameters().haptic.ldgfLambda_mm, 0.02);
     QCOMPARE(w.presetName(), QStringLiteral("Custom"));
     QCOMPARE(child<QComboBox>(w, "presetComboBox")->currentText(), QStringLiteral("Custom"));
     // The same parameters again: no signal.
@@ -138,10 +164,10 @@ private slots:
     QSignalSpy spy(&w, &qVesselTouchForceLawWidget::parametersChanged);
     child<QComboBox>(w, "proxyTangentRuleComboBox")->setCurrentIndex(1); // Drag
     QCOMPARE(spy.count(), 1);
-    QVERIFY(w.parameters().proxyTangentDrag);
+    QVERIFY(w.parameters().haptic.proxyTangentDrag);
     QVERIFY(tau->isEnabled());
     child<QComboBox>(w, "proxySnapRuleComboBox")->setCurrentIndex(1); // Snap-drag
-    QVERIFY(w.parameters().proxySnapDrag);
+    QVERIFY(w.parameters().haptic.proxySnapDrag);
     QVERIFY(child<QDoubleSpinBox>(w, "proxySnapThresholdSpinBox")->isEnabled());
   }
 
@@ -150,45 +176,46 @@ private slots:
     qVesselTouchForceLawWidget w;
     w.setForceLaw(qVesselTouchForceLawWidget::ConstraintProxy);
     qVesselTouchForceLawParameters p;
-    p.proxyStiffness_N_per_m = 1000.0;
-    p.proxyDamping_N_s_per_m = 0.2;
+    p.haptic.proxyStiffness_N_per_m = 1000.0;
+    p.haptic.proxyDamping_N_s_per_m = 0.2;
     w.setParameters(p);
-    QCOMPARE(w.parameters().proxyStiffness_N_per_m, 1000.0);
+    QCOMPARE(w.parameters().haptic.proxyStiffness_N_per_m, 1000.0);
 
     QSignalSpy spy(&w, &qVesselTouchForceLawWidget::parametersChanged);
     w.setDeviceLimits(400.0, 0.4);
     QCOMPARE(spy.count(), 1);
-    QCOMPARE(w.parameters().proxyStiffness_N_per_m, 400.0);
-    QCOMPARE(w.parameters().proxyDamping_N_s_per_m, 0.2); // below its bound: untouched
+    QCOMPARE(w.parameters().haptic.proxyStiffness_N_per_m, 400.0);
+    QCOMPARE(w.parameters().haptic.proxyDamping_N_s_per_m, 0.2); // below its bound: untouched
     QCOMPARE(child<QDoubleSpinBox>(w, "proxyStiffnessSpinBox")->maximum(), 400.0);
     QCOMPARE(child<QDoubleSpinBox>(w, "proxyStiffnessSpinBox")->value(), 400.0);
     QCOMPARE(w.maxStiffness_N_per_m(), 400.0);
 
     // A preset above the bound lands on the bound.
     QVERIFY(w.applyPreset(QStringLiteral("Firm")));
-    QCOMPARE(w.parameters().proxyStiffness_N_per_m, 400.0);
+    QCOMPARE(w.parameters().haptic.proxyStiffness_N_per_m, 400.0);
     QCOMPARE(w.presetName(), QStringLiteral("Firm"));
 
     // Asking for more than the device allows is refused.
     p = w.parameters();
-    p.proxyDamping_N_s_per_m = 5.0;
+    p.haptic.proxyDamping_N_s_per_m = 5.0;
     w.setParameters(p);
-    QCOMPARE(w.parameters().proxyDamping_N_s_per_m, 0.4);
+    QCOMPARE(w.parameters().haptic.proxyDamping_N_s_per_m, 0.4);
 
-    // Removing the bounds keeps the values but widens the ranges.
+    // Removing the bounds keeps the values but widens the ranges to the table's.
     w.setDeviceLimits(0.0, 0.0);
-    QCOMPARE(w.parameters().proxyStiffness_N_per_m, 400.0);
-    QCOMPARE(child<QDoubleSpinBox>(w, "proxyStiffnessSpinBox")->maximum(), 5000.0);
+    QCOMPARE(w.parameters().haptic.proxyStiffness_N_per_m, 400.0);
+    QCOMPARE(child<QDoubleSpinBox>(w, "proxyStiffnessSpinBox")->maximum(),
+      vtouch::hapticParameter(vtouch::HapticParameterId::ProxyStiffness).maximum);
   }
 
   void kappaKneesStayOrdered()
   {
     qVesselTouchForceLawWidget w;
     child<QDoubleSpinBox>(w, "proxyKappaLowSpinBox")->setValue(0.8);
-    QCOMPARE(w.parameters().proxyKappaLow, 0.8);
-    QVERIFY(w.parameters().proxyKappaHigh > w.parameters().proxyKappaLow);
-    QCOMPARE(
-      child<QDoubleSpinBox>(w, "proxyKappaHighSpinBox")->value(), w.parameters().proxyKappaHigh);
+    QCOMPARE(w.parameters().haptic.proxyKappaLow, 0.8);
+    QVERIFY(w.parameters().haptic.proxyKappaHigh > w.parameters().haptic.proxyKappaLow);
+    QCOMPARE(child<QDoubleSpinBox>(w, "proxyKappaHighSpinBox")->value(),
+      w.parameters().haptic.proxyKappaHigh);
   }
 
   void everyLawHasEveryPreset()

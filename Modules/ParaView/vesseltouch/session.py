@@ -33,11 +33,14 @@ import math
 
 from paraview import servermanager, simple
 
-__all__ = ["HapticSession", "logic", "SESSION_NAME", "FORCE_LAWS", "DEVICES"]
+from .haptic_parameters import HapticParameterAccess, _key
 
-#: Force law names accepted by :meth:`HapticSession.SetForceLaw` -> the ``ForceLaw`` value.
-FORCE_LAWS = {"ldgf": 0, "changeofheight": 1, "coh": 1, "lateralgradient": 2, "lateral": 2,
-              "constraintproxy": 3, "proxy": 3, "none": 4}
+__all__ = ["HapticSession", "logic", "SESSION_NAME", "FORCE_LAW_ALIASES", "DEVICES"]
+
+#: Short names accepted by :meth:`HapticSession.SetForceLaw` beside the labels of the
+#: ``ForceLaw`` property's choices (which come from the parameter table through the proxy).
+FORCE_LAW_ALIASES = {"coh": "changeofheight", "lateral": "lateralgradient",
+                     "proxy": "constraintproxy"}
 #: Device names accepted by :meth:`HapticSession.SetDevice` -> the ``DeviceType`` value.
 DEVICES = {"simulated": 0, "pointer": 1, "mouse": 1, "replay": 2, "hid": 3}
 
@@ -52,10 +55,6 @@ _LOG_COLUMNS = {"Time": "time", "Hand": "hand", "Cursor": "cursor", "State": "st
 def _first(value):
     """An information property's single value (servermanager gives a scalar or a list)."""
     return value[0] if isinstance(value, (list, tuple)) else value
-
-
-def _key(name):
-    return "".join(c for c in str(name).lower() if c.isalnum())
 
 
 def _normalized(v):
@@ -78,7 +77,7 @@ def _centerline_port(centerline):
     return centerline
 
 
-class HapticSession(object):
+class HapticSession(HapticParameterAccess):
     """One haptic session: centerline + camera + device + force law + zones + zoom.
 
     ``centerline``: a VesselCenterline proxy, a VesselPhantom proxy (its port 1 is used) or any
@@ -120,7 +119,9 @@ class HapticSession(object):
     def _set(self, **properties):
         """Sets several properties and pushes them in ONE UpdateVTKObjects, so the session's
         ApplyProperties (the proxy's post_push) publishes them to the haptic thread together:
-        a camera's position, focal point and view up never arrive apart."""
+        a camera's position, focal point and view up never arrive apart. A haptic parameter the
+        session refuses (out of its range: the C++ session checks every value against the
+        parameter table) raises ValueError with the session's message; it keeps its old value."""
         smproxy = self.proxy.SMProxy
         for name, value in properties.items():
             prop = smproxy.GetProperty(name)
@@ -128,10 +129,16 @@ class HapticSession(object):
                 self.proxy.SetPropertyWithName(name, value)  # inputs, strings: as ParaView does
                 continue
             values = list(value) if isinstance(value, (list, tuple)) else [value]
+            if prop.GetClassName() == "vtkSMIntVectorProperty":
+                values = [self._whole(name, v) for v in values]
             prop.SetNumberOfElements(len(values))
             for i, v in enumerate(values):
                 prop.SetElement(i, v)
         smproxy.UpdateVTKObjects()
+        requested = {n: float(v) for n, v in properties.items()
+                     if n in self.HapticParameterNames() and not isinstance(v, (list, tuple, str))}
+        if requested:
+            self._check_refused(requested)
 
     def _info(self, name):
         self.proxy.UpdatePropertyInformation()
@@ -294,27 +301,30 @@ class HapticSession(object):
             self._set(PointerPressed=1 if pressed else 0)
 
     # --- force -----------------------------------------------------------------------------
-    def SetForceLaw(self, law, k=None, lambda_mm=None, z_max_mm=None, forget_time_s=None,
-                    probe_px=None, k_c=None, b_c=None, tau_t=None, snap_N=None,
-                    tangent_drag=None, snap_drag=None):
-        """'LDGF', 'ChangeOfHeight', 'LateralGradient', 'ConstraintProxy' or 'None', with the
+    def SetForceLaw(self, law, k=None, lambda_mm=None, z_max_mm=None, probe_px=None, k_c=None,
+                    b_c=None, tau_t=None, snap_N=None, tangent_drag=None, snap_drag=None):
+        """'LDGF', 'ChangeOfHeight', 'LateralGradient', 'ConstraintProxy' or 'None' (the labels
+        of the ForceLaw property's choices, or the short names of FORCE_LAW_ALIASES), with the
         law's parameters: ``k`` (N, the force-zone gain k(P) in the saturation zone),
         ``lambda_mm`` (LDGF / change of height), ``z_max_mm`` (change of height, Hayward & Yi
-        eq. 8; 0 = two counts of the device's resolution; ``forget_time_s`` is ignored: eqs. 8-9
-        have no forgetting factor), ``probe_px`` (lateral gradient), ``k_c`` (N/m), ``b_c`` (N s/m), ``tau_t``,
-        ``snap_N`` (N), ``tangent_drag``, ``snap_drag`` (constraint proxy). Switching is
-        crossfaded (no force jump)."""
-        try:
-            value = FORCE_LAWS[_key(law)]
-        except KeyError:
-            raise ValueError("unknown force law %r (one of %s)" % (law, ", ".join(FORCE_LAWS)))
+        eq. 8; 0 = from the device's resolution), ``probe_px`` (lateral gradient), ``k_c``
+        (N/m), ``b_c`` (N s/m), ``tau_t``, ``snap_N`` (N), ``tangent_drag``, ``snap_drag``
+        (constraint proxy). Switching is crossfaded (no force jump). Every other haptic
+        parameter: SetHapticParameters(); defaults, ranges and meanings:
+        DescribeHapticParameters()."""
+        choices = self._choices("ForceLaw")
+        key = _key(law)
+        value = choices.get(FORCE_LAW_ALIASES.get(key, key))
+        if value is None:
+            raise ValueError("unknown force law %r (one of %s)"
+                             % (law, ", ".join(list(choices) + list(FORCE_LAW_ALIASES))))
         props = {"ForceLaw": value}
         if k is not None:
             props["ZoneGain"] = k
         if lambda_mm is not None:
             props["ChangeOfHeightLambda" if value == 1 else "LdgfLambda"] = lambda_mm
-        optional = (("ChangeOfHeightZMax", z_max_mm), ("ChangeOfHeightForgetTime", forget_time_s),
-                    ("LateralProbe", probe_px), ("ProxyStiffness", k_c), ("ProxyDamping", b_c),
+        optional = (("ChangeOfHeightZMax", z_max_mm), ("LateralProbe", probe_px),
+                    ("ProxyStiffness", k_c), ("ProxyDamping", b_c),
                     ("ProxyTangentThreshold", tau_t), ("ProxySnapThreshold", snap_N))
         for name, v in optional:
             if v is not None:
@@ -327,7 +337,7 @@ class HapticSession(object):
 
     def SetContact(self, dwell_s=None, approach_at_start=None):
         """When the exploring cursor captures the agent (Yi & Hayward section 3.2): after
-        ``dwell_s`` within the capture radius (default 0.05 s; 0 = at once), and, with
+        ``dwell_s`` within the capture radius (0 = at once), and, with
         ``approach_at_start``, only once the cursor has come from outside every capture radius
         after Start. After a click it always must leave the vessel first."""
         props = {}
@@ -338,15 +348,17 @@ class HapticSession(object):
         self._set(**props)
 
     def SetTracerRule(self, rule):
-        """'offset' (default) or 'movement' (Yi & Hayward section 3.2.1 as written)."""
-        rules = {"offset": 0, "movement": 1}
-        key = str(rule).lower()
+        """'offset' or 'movement' (Yi & Hayward section 3.2.1 as written): the labels of the
+        TracerRule property's choices."""
+        rules = self._choices("TracerRule")
+        key = _key(rule)
         if key not in rules:
-            raise ValueError("unknown tracer rule %r (offset or movement)" % (rule,))
+            raise ValueError("unknown tracer rule %r (one of %s)" % (rule, ", ".join(rules)))
         self._set(TracerRule=rules[key])
 
     def SetZoom(self, r):
-        """Haptic zoom r = cursor movement / hand movement, clamped to [0.1, 10]."""
+        """Haptic zoom r = cursor movement / hand movement (a value out of the Zoom parameter's
+        range raises ValueError)."""
         self._set(Zoom=float(r))
 
     def SetForceZones(self, gain_N=None, zero_below=None, saturate_above=None):

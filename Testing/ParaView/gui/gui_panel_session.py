@@ -97,6 +97,57 @@ for name, value in expected.items():
           % (name, values.get("vtk_object", {}).get(name), value))
 check(close(report.get("zones_gain_N"), 0.7, 1e-6), "the zones plot shows the law's gain")
 
+# Every haptic parameter of the one table went through the panel's write path (its values,
+# written by looping over the table) to the proxy and on to the C++ session's HapticParameters;
+# those the self-test did not edit are at the table's defaults (the panel's defaults are the
+# table's: no copy to drift).
+table = os.path.join(env["VESSELTOUCH_SOURCE_DIR"], "Logic", "Haptics", "vtouchHapticParameters.def")
+defaults = {}
+for row in open(table):
+    if row.startswith("VTOUCH_HAPTIC_PARAMETER("):
+        fields = [f.strip() for f in row.split('"')[0].split(",")]
+        defaults[fields[2]] = float(row.split('"')[4].split(",")[1])
+applied = values.get("vtk_object", {})
+check(len(defaults) >= 40, "the table lists the parameters (%d)" % len(defaults))
+for name, default in defaults.items():
+    check(close(values.get(name), applied.get(name), 0.0),
+          "%s: proxy %r reaches the C++ session (%r)" % (name, values.get(name), applied.get(name)))
+    if name not in expected:
+        check(close(applied.get(name), default, 0.0),
+              "%s at the table default %r (session %r)" % (name, default, applied.get(name)))
+
+# A session started from the panel's defaults (as they reached the C++ session at start-up) and
+# one started from Python's defaults render identical forces on the same offline trace.
+panel_defaults = report.get("values_at_startup", {}).get("vtk_object", {})
+check(len(panel_defaults) > len(defaults), "the panel's session at start-up reports its parameters")
+for name, default in defaults.items():
+    check(close(panel_defaults.get(name), default, 0.0),
+          "panel default %s = %r (table %r)" % (name, panel_defaults.get(name), default))
+trace = r"""
+import json, numpy
+from paraview import simple
+simple.LoadPlugin(%r, ns=globals())
+import vesseltouch
+phantom = VesselPhantom(Shape="Helix", Dimensions=[48, 48, 48])
+def forces(values):
+    s = vesseltouch.HapticSession(phantom)
+    s.SetHapticParameters(**values)
+    s.SetHandSweep(path=0, speed_mm_per_s=60.0)
+    return numpy.asarray(s.RunOffline(1.5, rate_Hz=1000.0)["force"])
+python_defaults = forces({})
+panel = forces(%r)
+print("TRACE=" + json.dumps({"equal": bool(numpy.array_equal(python_defaults, panel)),
+                             "max_N": float(numpy.abs(python_defaults).max())}))
+""" % (env["VESSELTOUCH_PLUGIN"], {k: v for k, v in panel_defaults.items() if k in defaults})
+run = subprocess.run([env["VESSELTOUCH_PVPYTHON"], "-c", trace], env=dict(os.environ),
+                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=240)
+line = [l for l in run.stdout.splitlines() if l.startswith("TRACE=")]
+check(bool(line), "the trace comparison ran (output: %s)" % run.stdout[-2000:])
+if line:
+    trace_result = json.loads(line[-1][len("TRACE="):])
+    check(trace_result["max_N"] > 0.05, "the trace renders a force (%r)" % trace_result)
+    check(trace_result["equal"], "panel defaults and Python defaults: identical forces")
+
 # Start with the simulated device, live zoom change, Stop with zero force.
 check(report.get("start_returned") is True, "Start succeeded (error: %r)"
       % report.get("error_after_start"))
