@@ -22,6 +22,7 @@
 #include <QGuiApplication>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QSaveFile>
 #include <QTimer>
 #include <QWidget>
 #include <QtDebug>
@@ -71,6 +72,7 @@ public:
   QElapsedTimer SinceRequest;
   long long CapturesAtRequest = 0;
   int TicksSinceReport = 0;
+  long long Reports = 0;
 
   vtkVesselTouchHapticSession* sessionObject() const
   {
@@ -449,12 +451,13 @@ void pqVesselTouchAgentDisplay::writeReportIfRequested()
     report.insert("view_height", widget->height());
     report.insert("device_pixel_ratio", widget->devicePixelRatioF());
   }
-  QFile file(path + ".tmp");
+  // Numbered, so a test can wait for a report written after what it did, and replaced in one
+  // step (rename(2)): a reader never finds the file missing or half written.
+  report.insert("sequence", static_cast<double>(++this->Internals->Reports));
+  QSaveFile file(path);
   if (file.open(QIODevice::WriteOnly | QIODevice::Truncate))
   {
     file.write(QJsonDocument(report).toJson());
-    file.close();
-    QFile::remove(path);
-    QFile::rename(path + ".tmp", path);
+    file.commit();
   }
 }

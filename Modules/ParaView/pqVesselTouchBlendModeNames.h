@@ -8,6 +8,7 @@
 #define pqVesselTouchBlendModeNames_h
 
 class vtkSMProxy;
+class vtkSMSessionProxyManager;
 
 class pqVesselTouchBlendModeNames
 {
@@ -17,6 +18,13 @@ public:
   // Adds the "Maximum Intensity" entry to REPRESENTATION's BlendMode enumeration when it has one
   // without it; returns whether the representation now names blend mode 1. Safe on any proxy.
   static bool nameMaximumIntensity(vtkSMProxy* representation);
+
+  // Adds the same entry to the Volume representation's definition in PXM's session, so every
+  // representation created from then on names blend mode 1 without the GUI: a Python state saved
+  // from the GUI (`BlendMode = 'Maximum Intensity'`) then loads in a pvpython that loaded the
+  // plugin and never ran ShowAsMIP. Runs by itself when the plugin is loaded (into the active
+  // session) and for every session that becomes active afterwards. Returns whether it is named.
+  static bool nameMaximumIntensityInDefinitions(vtkSMSessionProxyManager* pxm);
 };
 
 #endif

@@ -380,14 +380,29 @@ void pqVesselTouchCenterlineWorkflow::acceptSeed(const double seed_mm[3], double
 void pqVesselTouchCenterlineWorkflow::adoptFromState()
 {
   pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  // The loaded session's centerlines (a state loaded into a running ParaView leaves the old
+  // pipeline beside the loaded one), else the newest extraction.
   pqPipelineSource* filter = nullptr;
+  pqPipelineSource* sessionCenterlines = nullptr;
   for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
   {
-    if (QLatin1String(source->getProxy()->GetXMLName()) == QLatin1String("VesselCenterline"))
+    const QLatin1String xmlName(source->getProxy()->GetXMLName());
+    if (xmlName == QLatin1String("VesselCenterline"))
     {
       filter = source; // the last one: the newest extraction
     }
+    else if (xmlName == QLatin1String("VesselTouchHapticSession") &&
+             source->getSMName() == QLatin1String("VesselTouchSession"))
+    {
+      vtkSMProxy* input = vtkSMPropertyHelper(source->getProxy(), "Input", true).GetAsProxy();
+      pqPipelineSource* centerlines = input ? model->findItem<pqPipelineSource*>(input) : nullptr;
+      if (centerlines && QLatin1String(input->GetXMLName()) == QLatin1String("VesselCenterline"))
+      {
+        sessionCenterlines = centerlines; // the newest session's
+      }
+    }
   }
+  filter = sessionCenterlines ? sessionCenterlines : filter;
   vtkSMProxy* proxy = filter ? filter->getProxy() : nullptr;
   vtkSMProxy* input = proxy ? vtkSMPropertyHelper(proxy, "Input").GetAsProxy() : nullptr;
   pqPipelineSource* volume = input ? model->findItem<pqPipelineSource*>(input) : nullptr;

@@ -2,6 +2,7 @@
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
+#include "pqObjectBuilder.h"
 #include "pqPipelineSource.h"
 #include "pqRenderView.h"
 #include "pqServer.h"
@@ -50,13 +51,15 @@ pqVesselTouchSessionBinding::pqVesselTouchSessionBinding(QObject* parentObject)
         this->onSourceAdded(source);
       }
     });
+  // The newest session when there are several (a state loaded before the panel existed).
+  pqPipelineSource* newest = nullptr;
   for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
   {
-    if (isSession(source))
-    {
-      this->adopt(source);
-      break;
-    }
+    newest = isSession(source) ? source : newest;
+  }
+  if (newest)
+  {
+    this->adopt(newest);
   }
 }
 
@@ -81,9 +84,32 @@ pqPipelineSource* pqVesselTouchSessionBinding::source() const
 
 void pqVesselTouchSessionBinding::onSourceAdded(pqPipelineSource* source)
 {
-  if (isSession(source) && source != this->Source)
+  if (!isSession(source) || source == this->Source)
   {
-    this->adopt(source);
+    return;
+  }
+  // A second "VesselTouchSession": a state file loaded into a running ParaView (ParaView adds the
+  // state's proxies beside the existing ones) or a script registering a new one. The newest is THE
+  // session: the old one stops at once (its loop zeroes the force), the panel and the view follow
+  // the new one, and the old one is deleted once the event that registered the new one is over
+  // (not from inside the state loader's registration), so exactly one session stays registered.
+  QPointer<pqPipelineSource> old = this->Source;
+  if (old && old->getProxy())
+  {
+    old->getProxy()->InvokeCommand("Stop");
+  }
+  this->adopt(source);
+  if (old)
+  {
+    QTimer::singleShot(0,
+      this,
+      [old]()
+      {
+        if (old && old->getProxy())
+        {
+          pqApplicationCore::instance()->getObjectBuilder()->destroy(old);
+        }
+      });
   }
 }
 

@@ -3,6 +3,9 @@
 // the Python console drive one object. Finds it through pqServerManagerModel, follows it being
 // added/removed (also by a state file), creates it when asked, and reports any change of its
 // properties (from Python, a loaded state, the properties panel) with propertiesModified().
+// One session at a time: when another "VesselTouchSession" is registered (File > Load State or
+// LoadState() while a session exists), the new one is adopted, the old one is stopped at once and
+// deleted right after, as vesseltouch.logic() does in pvpython.
 #ifndef pqVesselTouchSessionBinding_h
 #define pqVesselTouchSessionBinding_h
 

@@ -1,20 +1,30 @@
 #include "pqVesselTouchTestDriver.h"
 
+#include "pqVesselTouchCenterlineWorkflow.h"
+#include "pqVesselTouchDockPanel.h"
 #include "pqVesselTouchOrientationLabels.h"
+#include "pqVesselTouchSessionBinding.h"
 #include "pqVesselTouchSessionStatus.h"
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
 #include "pqCoreUtilities.h"
 #include "pqPVApplicationCore.h"
+#include "pqLoadStateReaction.h"
 #include "pqPipelineBrowserWidget.h"
 #include "pqPipelineSource.h"
 #include "pqPropertyWidget.h"
 #include "pqPythonManager.h"
 #include "pqRenderView.h"
+#include "pqSaveStateReaction.h"
+#include "pqServer.h"
 #include "pqServerManagerModel.h"
 
 #include "vtkCamera.h"
+#include "vtkCollection.h"
+#include "vtkNew.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMSessionProxyManager.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 #include "vtkSMProperty.h"
@@ -176,6 +186,18 @@ void pqVesselTouchTestDriver::poll()
   this->Busy = false;
 }
 
+void pqVesselTouchTestDriver::runAsAction(const std::function<void()>& action)
+{
+  QTimer::singleShot(0,
+    this,
+    [this, action]()
+    {
+      this->InAction = true;
+      action();
+      this->InAction = false;
+    });
+}
+
 void pqVesselTouchTestDriver::pollOnce()
 {
   const QDir directory(this->Directory);
@@ -186,6 +208,16 @@ void pqVesselTouchTestDriver::pollOnce()
   }
   const QString line = QString::fromUtf8(command.readAll()).trimmed();
   command.close();
+  // While a queued action runs (Edit > Reset Session, a Python state's save), ParaView may turn
+  // the event loop inside it (its confirmation dialog, progress while the session is rebuilt):
+  // only commands that answer its dialogs run then, the others wait until it is over. A state
+  // loaded from inside Reset Session, between the old session's end and the new one's view,
+  // crashed ParaView in vtkSMViewLayoutProxy (a user cannot do that; the driver could).
+  const QString verb = line.section(' ', 0, 0);
+  if (this->InAction && verb != QLatin1String("accept") && verb != QLatin1String("dismiss"))
+  {
+    return;
+  }
   const QString error = this->run(line);
   QJsonObject reply;
   reply.insert("command", line);
@@ -223,7 +255,7 @@ QString pqVesselTouchTestDriver::run(const QString& line)
     }
     // Queued: a confirmation dialog the action opens (Reset Session) must not block the reply;
     // the test answers it through the X server.
-    QTimer::singleShot(0, action, &QAction::trigger);
+    this->runAsAction([action]() { action->trigger(); });
     return QString();
   }
   if (verb == "click" || verb == "check")
@@ -351,13 +383,21 @@ QString pqVesselTouchTestDriver::run(const QString& line)
   }
   if (verb == "savestate" || verb == "loadstate")
   {
-    // What File > Save State and File > Load State do once the file is chosen.
-    pqApplicationCore* core = pqApplicationCore::instance();
+    // What File > Save State and File > Load State do once the file is chosen (a .pvsm or a
+    // Python .py state; ParaView's own reactions).
+    if (verb == "savestate" && name.endsWith(".py"))
+    {
+      // Queued: ParaView may ask for the Python state's options in a dialog, which the test
+      // answers (as a user does) and the reply must not wait for.
+      this->runAsAction([name]() { pqSaveStateReaction::savePythonState(name); });
+      return QString();
+    }
     if (verb == "savestate")
     {
-      return core->saveState(name) ? QString() : QString("could not save %1").arg(name);
+      return pqSaveStateReaction::saveState(name) ? QString()
+                                                  : QString("could not save %1").arg(name);
     }
-    core->loadState(name.toUtf8().constData(), pqActiveObjects::instance().activeServer());
+    pqLoadStateReaction::loadState(name, false, pqActiveObjects::instance().activeServer());
     return QString();
   }
   if (verb == "python")
@@ -534,11 +574,45 @@ QJsonObject pqVesselTouchTestDriver::state() const
     }
   }
 
-  pqPipelineSource* sessionSource = model->findItem<pqPipelineSource*>("VesselTouchSession");
-  vtkSMProxy* session = sessionSource ? sessionSource->getProxy() : nullptr;
+  // The session the panel is bound to, and every session registered under the shared name (one
+  // is expected; a loaded state must not leave the old one beside it).
+  auto* panel = qobject_cast<pqVesselTouchDockPanel*>(this->Panel.data());
+  vtkSMProxy* session = panel ? panel->sessionBinding()->proxy() : nullptr;
   const pqVesselTouchSessionStatus status = pqVesselTouchSessionStatus::read(session);
+  QJsonArray registered;
+  QJsonArray registeredRunning;
+  if (pqServer* server = pqActiveObjects::instance().activeServer())
+  {
+    vtkNew<vtkCollection> sessions;
+    server->proxyManager()->GetProxies("sources", "VesselTouchSession", sessions);
+    for (int i = 0; i < sessions->GetNumberOfItems(); ++i)
+    {
+      auto* proxy = vtkSMProxy::SafeDownCast(sessions->GetItemAsObject(i));
+      registered.append(static_cast<double>(proxy->GetGlobalID()));
+      registeredRunning.append(pqVesselTouchSessionStatus::read(proxy).running);
+    }
+  }
+  auto globalId = [](vtkSMProxy* proxy)
+  { return proxy ? static_cast<double>(proxy->GetGlobalID()) : 0.0; };
   QJsonObject sessionState;
   sessionState.insert("exists", session != nullptr);
+  sessionState.insert("global_id", globalId(session));
+  sessionState.insert("registered", registered);
+  sessionState.insert("registered_running", registeredRunning);
+  sessionState.insert("input_global_id",
+    globalId(session ? vtkSMPropertyHelper(session, "Input", true).GetAsProxy() : nullptr));
+  if (panel)
+  {
+    pqVesselTouchCenterlineWorkflow* workflow = panel->centerlineWorkflow();
+    pqPipelineSource* volume = workflow->currentVolume();
+    pqPipelineSource* centerline = workflow->centerline();
+    state.insert("panel_volume_global_id", globalId(volume ? volume->getProxy() : nullptr));
+    state.insert(
+      "panel_centerline_global_id", globalId(centerline ? centerline->getProxy() : nullptr));
+    state.insert("panel_centerline_input_global_id",
+      globalId(
+        centerline ? vtkSMPropertyHelper(centerline->getProxy(), "Input").GetAsProxy() : nullptr));
+  }
   sessionState.insert("running", status.running);
   sessionState.insert("fault", status.faultCode);
   sessionState.insert("fault_text", status.faultText);

@@ -4,11 +4,15 @@
 // action would run (a QAction triggered as its menu entry does, a button clicked, a spin box
 // edited) and answers with "reply-<n>.json": {"ok", "error", "state"}. The state lists every
 // named widget of the VesselTouch panel and toolbar (text, value, visibility, screen geometry for
-// xdotool), the pipeline sources, the active view's screen geometry and the session's status.
+// xdotool), the pipeline sources, the active view's screen geometry and the status of the session
+// the panel is bound to, with every session registered as "VesselTouchSession" (global ids) and
+// the ids of the panel's volume and centerlines.
 //
-// Verbs: state | trigger ACTION (queued: the reply comes before any dialog it opens) | click BUTTON
-// | check BUTTON|ACTION 0|1 | set WIDGET VALUE | select SOURCE ("" for none) | python SCRIPT (run
-// in the GUI's Python) | capture PNG (the active render view's image) | render.
+// Verbs: state | trigger ACTION (queued: the reply comes before any dialog it opens; other commands
+// wait until the action is over, except accept and dismiss, which answer its dialogs) | click
+// BUTTON | check BUTTON|ACTION 0|1 | set WIDGET VALUE | select SOURCE ("" for none) | python SCRIPT
+// (run in the GUI's Python) | capture PNG (the active render view's image) | render | savestate
+// FILE and loadstate FILE (.pvsm or .py, through ParaView's File > Save/Load State reactions).
 #ifndef pqVesselTouchTestDriver_h
 #define pqVesselTouchTestDriver_h
 
@@ -16,6 +20,8 @@
 #include <QObject>
 #include <QPointer>
 #include <QString>
+
+#include <functional>
 
 class QWidget;
 
@@ -37,11 +43,15 @@ private:
   void pollOnce();
   /// Runs one command line; "" on success, else the error.
   QString run(const QString& line);
+  /// Runs `action` from the event loop (the reply does not wait for its dialogs); until it
+  /// returns, only "accept" and "dismiss" commands run.
+  void runAsAction(const std::function<void()>& action);
 
   QPointer<QWidget> Panel;
   QString Directory;
   int Next = 1;
   bool Busy = false;
+  bool InAction = false;
   Q_DISABLE_COPY(pqVesselTouchTestDriver)
 };
 

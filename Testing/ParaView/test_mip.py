@@ -1,11 +1,16 @@
-"""Show as MIP: Volume representation with blend mode 1, a grey map, and a non-blank image."""
+"""Show as MIP: Volume representation with blend mode 1, a grey map, and a non-blank image.
 
+A Python state of a MIP (what File > Save State writes as .py: `BlendMode = 'Maximum Intensity'`)
+runs in a fresh pvpython that loaded the plugin and never ran ShowAsMIP: the plugin names blend
+mode 1 in the Volume representation's definition when it loads (issue 20, item 11's follow-up)."""
+
+import json
 import os
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from vtouch_testing import Check, image_statistics, plugin_path  # noqa: E402
+from vtouch_testing import Check, image_statistics, plugin_path, run_pvpython  # noqa: E402
 
 from paraview import simple  # noqa: E402
 
@@ -43,5 +48,47 @@ try:
     check.true(False, "ShowAsMIP on a polyline must raise")
 except ValueError as error:
     check.true("image" in str(error), "clear message for a non-image: %s" % error)
+
+# A Python state of the MIP, as the GUI's File > Save State (.py) writes it.
+from paraview import smstate  # noqa: E402
+
+for source in list(simple.GetSources().values()):
+    if source is not phantom:
+        simple.Hide(source, view)
+state_text = smstate.get_state()
+check.true("BlendMode = 'Maximum Intensity'" in state_text,
+           "the Python state names the MIP's blend mode (%s)"
+           % [line.strip() for line in state_text.splitlines() if "BlendMode" in line])
+probe = r"""
+import json
+from paraview import simple
+%s
+exec(open(%r).read())
+reps = [r for r in simple.GetRepresentations().values()
+        if r.GetProperty("BlendMode") is not None and r.Representation == "Volume"]
+print("PROBE=" + json.dumps([r.SMProxy.GetProperty("BlendMode").GetElement(0) for r in reps]))
+"""
+with tempfile.TemporaryDirectory() as tmp:
+    state_py = os.path.join(tmp, "mip_state.py")
+    with open(state_py, "w") as f:
+        f.write(state_text)
+    # A fresh pvpython: the plugin loaded (as a user does before running a state that uses its
+    # sources), vesseltouch never imported, ShowAsMIP never run.
+    code, output = run_pvpython(probe % ("simple.LoadPlugin(%r, ns=globals())" % plugin_path(),
+                                         state_py), timeout=180)
+    lines = [line for line in output.splitlines() if line.startswith("PROBE=")]
+    check.equal(code, 0, "the Python state loads in a fresh pvpython: %s" % output[-1500:])
+    modes = json.loads(lines[-1][len("PROBE="):]) if lines else []
+    check.true(modes and all(mode == 1 for mode in modes),
+               "its MIP is maximum intensity: %r" % modes)
+    # Without the plugin's naming (no plugin loaded) the same line is refused: what the plugin
+    # fixes. The state's own sources need the plugin, so this runs only the blend-mode line.
+    code, output = run_pvpython(
+        "from paraview import simple\n"
+        "rep = simple.Show(simple.Wavelet())\n"
+        "rep.SetRepresentationType('Volume')\n"
+        "rep.BlendMode = 'Maximum Intensity'\n")
+    check.true(code != 0 and "Maximum Intensity" in output,
+               "without the plugin ParaView refuses the name (code %s)" % code)
 
 check.finish()

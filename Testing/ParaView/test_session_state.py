@@ -1,7 +1,12 @@
 """The shared haptic session in ParaView state files: the "VesselTouchSession" proxy that
 vesseltouch.logic() creates (and the dock panel binds to) is registered, so SaveState writes its
 properties and LoadState, in a fresh pvpython, brings them back under the same name with the
-same centerline input; the panel re-syncs its widgets from these values on state load."""
+same centerline input; the panel re-syncs its widgets from these values on state load.
+
+A state loaded into a running session (issue 20, item 12): ParaView adds the state's proxies
+beside the existing ones, so a second "VesselTouchSession" appears. The old session stops as soon
+as the loaded one is registered (force to zero), vesseltouch.logic() returns the loaded one (not
+running), and the old one is deleted: exactly one session stays registered."""
 
 import json
 import os
@@ -11,7 +16,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from vtouch_testing import Check, plugin_path, run_pvpython  # noqa: E402
 
-from paraview import simple  # noqa: E402
+from paraview import servermanager, simple  # noqa: E402
 
 check = Check("SessionState")
 simple.LoadPlugin(plugin_path(), ns=globals())
@@ -82,5 +87,38 @@ if line:
     check.true(len(applied) >= 40, "the loaded session reports its haptic parameters")
     check.equal(loaded.get("input_xml"), "VesselPhantom", "the centerline input restored")
     check.equal(loaded.get("input_port"), 1, "port 1 (the analytic centerline)")
+
+# --- LoadState into a running session -----------------------------------------------------
+session.SetDevice("simulated")
+session.Bind(phantom)
+session.Start()
+check.true(session.IsRunning(), "the session runs before the load")
+session.SetZoom(1.0)  # changed after saving: the loaded session has 2.5
+old_proxy = session.proxy
+simple.LoadState(state)
+pxm = servermanager.ProxyManager()
+registered = pxm.GetProxies("sources", "VesselTouchSession")
+check.equal(len(registered), 2, "LoadState adds the state's session beside the running one")
+check.true(not vesseltouch.HapticSession(proxy=old_proxy).IsRunning(),
+           "the old session stopped when the loaded one was registered (before logic())")
+loaded = vesseltouch.logic()
+check.true(loaded.proxy.SMProxy.__this__ != old_proxy.SMProxy.__this__,
+           "logic() returns the loaded session, not the old one")
+registered = pxm.GetProxies("sources", "VesselTouchSession")
+check.equal([p.SMProxy.__this__ for p in registered], [loaded.proxy.SMProxy.__this__],
+            "exactly one session is registered: the loaded one")
+check.true(pxm.SMProxyManager.GetProxyName("sources", old_proxy.SMProxy) in (None, ""),
+           "the old session is no longer registered")
+check.true(not loaded.IsRunning(), "the loaded session waits for Start()")
+for name, value in expected.items():
+    got = loaded.proxy.GetProperty(name).SMProperty.GetElement(0)
+    check.true(abs(float(got) - value) < 1e-9, "loaded %s: %r (expected %r)" % (name, got, value))
+check.true(vesseltouch.logic() is loaded, "logic() keeps returning the loaded session")
+loaded.SetDevice("simulated")
+loaded.Bind(loaded.proxy.Input)
+loaded.Start()
+check.true(loaded.IsRunning() and loaded.GetStatus()["paths"] > 0,
+           "the loaded session starts on the loaded centerline (%r)" % loaded.GetStatus())
+loaded.Stop()
 
 check.finish()

@@ -29,13 +29,38 @@ def check(condition, message):
     return condition
 
 
+def settled_report(run, after, seconds=30):
+    """The first report, among those written after report number ``after``, that shows the
+    session's cursor where the one before it showed it: ParaView has handled the pointer events
+    sent before ``after`` was read (a report is written from its event loop, which reads the X
+    events too) and the haptic loop has moved the cursor. The agent display writes a report about
+    twice a second when the machine is idle, much less often under load: waiting a fixed time
+    read a report older than the moves (the test's flakiness)."""
+    deadline = time.time() + seconds
+    previous = None
+    while time.time() < deadline:
+        report = run.report()
+        if report is not None and report.get("sequence", 0) > after + 1:
+            cursor = (report["cursor_x_px"], report["cursor_y_px"])
+            if (previous is not None and report["sequence"] > previous["sequence"] and
+                    cursor == (previous["cursor_x_px"], previous["cursor_y_px"])):
+                return report
+            if previous is None or report["sequence"] > previous["sequence"]:
+                previous = report
+        time.sleep(0.1)
+    check(False, "no settled report within %d s (last %r)" % (seconds, previous))
+    return previous or run.report() or {}
+
+
 def cursor_after(run, *steps):
     for step in steps:
         run.xdotool(*step)
         time.sleep(0.15)
-    time.sleep(1.2)  # the report is written twice a second
-    report = run.report()
-    return report, (report["cursor_x_px"], report["cursor_y_px"])
+    # xdotool returns once the X server has the event; a report numbered past the one current
+    # now was written after ParaView read it.
+    current = run.report() or {}
+    report = settled_report(run, current.get("sequence", 0))
+    return report, (report.get("cursor_x_px", 0.0), report.get("cursor_y_px", 0.0))
 
 
 run = ParaViewRun("gui_pointer", {"VESSELTOUCH_GUI_AGENT": "1", "VESSELTOUCH_GUI_TRACE_MOUSE": "1",
