@@ -13,6 +13,7 @@ namespace
 constexpr int kMaxNeighbours = 16;
 constexpr double kZeroLength_px = 1e-6;
 constexpr int kLookAhead = 256;
+constexpr double kLeadTurnCos = 0.9961946980917455; // cos 5 degrees (locationToward)
 
 Vec2 unit(const Vec2& v)
 {
@@ -505,10 +506,145 @@ double Tracer::followMovement(const ViewModel& vm, const Vec2& movement_px)
   return travelled;
 }
 
+AgentLocation Tracer::locationToward(const ViewModel& vm,
+  const Vec2& cursor_px,
+  double reach_px,
+  double* arcOffset_mm) const
+{
+  const AgentLocation& loc = this->Location;
+  double arc = 0.0;
+  const SceneTopology& topo = vm.topology();
+  // Signed 3D arc of a move on edge a -> b from fraction t0 to t1 (advance()'s convention).
+  auto along = [&topo, &arc](int a, int b, double t0, double t1)
+  {
+    const double len3 = (topo.position_World_mm(b) - topo.position_World_mm(a)).norm();
+    arc += (t1 - t0) * len3 * (b > a ? 1.0 : -1.0);
+  };
+  if (arcOffset_mm)
+  {
+    *arcOffset_mm = 0.0;
+  }
+  if (!loc.valid() || !cursor_px.isFinite() || !(reach_px > 0.0))
+  {
+    return loc;
+  }
+  int nb[kMaxNeighbours];
+  // The edge a -> b the location moves along, from fraction t, and the cursor's projection on it.
+  int a = loc.from;
+  int b = -1;
+  double t = 0.0;
+  double proj = 0.0;
+  if (loc.t > 0.0 && loc.to >= 0)
+  {
+    const Vec2 here = vm.screen_px(loc.from) * (1.0 - loc.t) + vm.screen_px(loc.to) * loc.t;
+    proj = (cursor_px - here).dot(this->directionTo(vm, loc.from, loc.to));
+    a = proj >= 0.0 ? loc.from : loc.to;
+    b = proj >= 0.0 ? loc.to : loc.from;
+    t = proj >= 0.0 ? loc.t : 1.0 - loc.t;
+    proj = std::fabs(proj);
+  }
+  else
+  {
+    // At a point: toward the neighbour of largest projection (the tracer's candidates).
+    const Vec2 r = cursor_px - vm.screen_px(loc.from);
+    const int count = topo.neighbours(loc.from, nb, kMaxNeighbours);
+    for (int i = 0; i < count; ++i)
+    {
+      const double p = r.dot(this->directionTo(vm, loc.from, nb[i]));
+      if (p > proj)
+      {
+        proj = p;
+        b = nb[i];
+      }
+    }
+  }
+  double remaining = std::min(proj, reach_px);
+  if (b < 0 || !(remaining > 0.0))
+  {
+    return loc;
+  }
+  // The walk stops before a point whose eta (the stencil's projected tangent, smooth along the
+  // vessel) has turned by more than 5 degrees from the agent's: at a projection cusp (Yi &
+  // Hayward §4.2, Fig. 4) eta turns by up to 180 degrees within a fraction of a pixel, and a
+  // reading that followed a dithering cursor into the turn would swing the force back and forth
+  // while the agent (with its fold hysteresis) stays. On a smooth screen path the dead band's
+  // reach never turns that much.
+  const Vec2 eta0 = vm.eta(loc.from);
+  for (int step = 0; step < kLookAhead; ++step)
+  {
+    const double len = (vm.screen_px(b) - vm.screen_px(a)).norm();
+    if (std::fabs(vm.eta(b).dot(eta0)) < kLeadTurnCos)
+    {
+      if (arcOffset_mm)
+      {
+        *arcOffset_mm = arc;
+      }
+      return { a, b, t };
+    }
+    const double left = (1.0 - t) * len;
+    if (len > kZeroLength_px && left > remaining)
+    {
+      along(a, b, t, t + remaining / len);
+      if (arcOffset_mm)
+      {
+        *arcOffset_mm = arc;
+      }
+      return { a, b, t + remaining / len };
+    }
+    along(a, b, t, 1.0);
+    remaining -= left;
+    // On through b along its path (straight on), or its one other neighbour; stop at a junction
+    // or a path end.
+    const int count = topo.neighbours(b, nb, kMaxNeighbours);
+    const int straight = b + (b - a);
+    int next = -1;
+    int others = 0;
+    for (int i = 0; i < count; ++i)
+    {
+      if (nb[i] == a)
+      {
+        continue;
+      }
+      ++others;
+      if (nb[i] == straight && topo.pathOf(nb[i]) == topo.pathOf(b))
+      {
+        next = nb[i];
+      }
+    }
+    if (next < 0 && others == 1)
+    {
+      for (int i = 0; i < count; ++i)
+      {
+        next = nb[i] != a ? nb[i] : next;
+      }
+    }
+    if (next < 0 || !(remaining > 0.0))
+    {
+      if (arcOffset_mm)
+      {
+        *arcOffset_mm = arc;
+      }
+      return { b, a, 0.0 };
+    }
+    a = b;
+    b = next;
+    t = 0.0;
+  }
+  if (arcOffset_mm)
+  {
+    *arcOffset_mm = arc;
+  }
+  return { a, b, t };
+}
+
 AgentSample Tracer::sample(const ViewModel& vm) const
 {
+  return sampleAt(vm, this->Location);
+}
+
+AgentSample Tracer::sampleAt(const ViewModel& vm, const AgentLocation& loc)
+{
   AgentSample s;
-  const AgentLocation& loc = this->Location;
   const SceneTopology& topo = vm.topology();
   const int a = loc.from;
   const bool onEdge = loc.t > 0.0 && loc.to >= 0;

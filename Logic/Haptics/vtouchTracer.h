@@ -102,6 +102,24 @@ public:
 
   /// Interpolated quantities at the agent. Requires a valid location.
   AgentSample sample(const ViewModel& vm) const;
+  /// Where the cursor projects on the vessel, within `reach_px` of screen arc of the agent: the
+  /// agent's location moved along the path (straight on through points, never into a branch) by
+  /// the cursor offset's projection on the local screen tangent, clamped to `reach_px`. With
+  /// reach_px = deadBand_px this is the agent without the dead band's backlash: the offset rule's
+  /// agent trails the cursor's projection by the dead band once moving and stays still within
+  /// it, so the agent is a hysteretic function of the hand, while this location is a function of
+  /// the cursor alone. The slope laws sample dz, dl and eta here (HapticPipeline): a force field
+  /// read through a lag that reverses with the hand's direction does net work on the hand every
+  /// back-and-forth cycle (a negative Coulomb friction of 2 x dead band x the field's gradient)
+  /// and sustains a limit cycle against a soft grip where the field is steep. Requires a valid
+  /// location. `arcOffset_mm` (optional): the signed 3D arc from the agent to it (+ toward
+  /// increasing index, as arcLength_mm()).
+  AgentLocation locationToward(const ViewModel& vm,
+    const Vec2& cursor_px,
+    double reach_px,
+    double* arcOffset_mm = nullptr) const;
+  /// Interpolated quantities at a location on the graph (as sample() at the agent).
+  static AgentSample sampleAt(const ViewModel& vm, const AgentLocation& location);
 
 private:
   Vec2 directionTo(const ViewModel& vm, int a, int m) const;
