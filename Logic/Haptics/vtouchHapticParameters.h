@@ -98,6 +98,11 @@ struct HapticParameters
   int tracerRule = 0;
   /// Movement rule: per-tick projections below this leave the agent still, px. Default 0.01 px
   double tracerMovementThreshold_px = 0.01;
+  /// Both rules: within this screen arc of the last junction passed, the branch choice follows
+  /// the hand (Tracer::junctionWindow_px); 0 = the choice at the junction is final. Default 24 px
+  double tracerJunctionWindow_px = 24.0;
+  /// ...re-routing when the cursor is this much closer to another branch, px. Default 1 px
+  double tracerJunctionMargin_px = 1.0;
 
   static constexpr double kMinZoom = 0.1;
   static constexpr double kMaxZoom = 10.0;

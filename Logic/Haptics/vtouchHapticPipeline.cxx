@@ -96,6 +96,10 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
                                        : 0.01;
   this->Trace.foldLookAhead_px =
     std::isfinite(p.tracerFoldLookAhead_px) ? std::max(0.0, p.tracerFoldLookAhead_px) : 3.0;
+  this->Trace.junctionWindow_px =
+    std::isfinite(p.tracerJunctionWindow_px) ? std::max(0.0, p.tracerJunctionWindow_px) : 24.0;
+  this->Trace.junctionMargin_px =
+    std::isfinite(p.tracerJunctionMargin_px) ? std::max(0.0, p.tracerJunctionMargin_px) : 1.0;
 }
 
 Vec2 HapticPipeline::renderLaws(const ForceInput& fin,
@@ -216,13 +220,18 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
         // Ikits eq. 11: the proxy moves only in the law's steps (ForceRequest::agentStep_px).
         this->Trace.trail_px = 0.0;
       }
-      else if (p.tracerRule == 1)
-      {
-        this->Trace.followMovement(*vm, this->Cursor - cursorBefore);
-      }
       else
       {
-        this->Trace.follow(*vm, this->Cursor);
+        if (p.tracerRule == 1)
+        {
+          this->Trace.followMovement(*vm, this->Cursor - cursorBefore);
+        }
+        else
+        {
+          this->Trace.follow(*vm, this->Cursor);
+        }
+        // The branch choice of the last junction follows the hand (both rules).
+        this->Trace.reconsiderJunction(*vm, this->Cursor);
       }
     }
   }

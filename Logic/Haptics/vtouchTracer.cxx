@@ -27,6 +27,9 @@ void Tracer::release()
   this->State = InteractionState::Exploring;
   this->Location = {};
   this->Direction = 0;
+  this->Junction = {};
+  this->ArrivedAt = -1;
+  this->ArrivedFrom = -1;
 }
 
 void Tracer::placeAt(const ViewModel& vm, int g)
@@ -35,6 +38,9 @@ void Tracer::placeAt(const ViewModel& vm, int g)
   this->Location = { g, -1, 0.0 };
   this->Direction = 0;
   this->TopologyId = vm.topology().id();
+  this->Junction = {};
+  this->ArrivedAt = -1;
+  this->ArrivedFrom = -1;
 }
 
 bool Tracer::tryContact(const ViewModel& vm, const Vec2& cursor_px)
@@ -131,7 +137,241 @@ double Tracer::advance(const ViewModel& vm, int a, int b, double fromT, double t
   {
     this->Direction = (toT > fromT) ? sign : -sign;
   }
+  // Junction bookkeeping for reconsiderJunction(): leaving a point of more than two neighbours
+  // records the choice made there; reaching a point records where the agent came from.
+  const int left = fromT <= 0.0 && toT > 0.0 ? a : (fromT >= 1.0 && toT < 1.0 ? b : -1);
+  if (left >= 0)
+  {
+    const int toward = left == a ? b : a;
+    const int entry = this->ArrivedAt == left ? this->ArrivedFrom : -1;
+    int nb[kMaxNeighbours];
+    if (toward != entry && topo.neighbours(left, nb, kMaxNeighbours) > 2)
+    {
+      this->Junction = {};
+      this->Junction.point = left;
+      this->Junction.entry = entry;
+      this->Junction.taken = toward;
+    }
+  }
+  if (toT >= 1.0 && fromT < 1.0)
+  {
+    this->ArrivedAt = b;
+    this->ArrivedFrom = a;
+  }
+  else if (toT <= 0.0 && fromT > 0.0)
+  {
+    this->ArrivedAt = a;
+    this->ArrivedFrom = b;
+  }
   return std::fabs(toT - fromT) * (vm.screen_px(b) - vm.screen_px(a)).norm();
+}
+
+Tracer::ChainFit Tracer::fitChain(const ViewModel& vm,
+  int point,
+  int first,
+  double window_px,
+  int* out,
+  int cap) const
+{
+  const SceneTopology& topo = vm.topology();
+  ChainFit fit;
+  out[0] = point;
+  out[1] = first;
+  fit.count = 2;
+  int nb[kMaxNeighbours];
+  const AgentLocation& loc = this->Location;
+  for (int i = 0; i + 1 < fit.count; ++i)
+  {
+    const int p = out[i];
+    const int q = out[i + 1];
+    const double len = (vm.screen_px(q) - vm.screen_px(p)).norm();
+    // The agent on this segment (at a point counts as the end of the segment reaching it).
+    if (fit.agentSegment < 0)
+    {
+      if (loc.t > 0.0 && loc.to >= 0 &&
+          ((loc.from == p && loc.to == q) || (loc.from == q && loc.to == p)))
+      {
+        fit.agentSegment = i;
+        fit.agentFraction = loc.from == p ? loc.t : 1.0 - loc.t;
+      }
+      else if (!(loc.t > 0.0) && loc.from == q)
+      {
+        fit.agentSegment = i;
+        fit.agentFraction = 1.0;
+      }
+      if (fit.agentSegment == i)
+      {
+        fit.agentArc_px = fit.arc_px + fit.agentFraction * len;
+      }
+    }
+    fit.arc_px += len;
+    if (fit.arc_px > window_px || fit.count >= cap)
+    {
+      break;
+    }
+    // On through q: straight along its path, or its one other neighbour; stop at a junction.
+    const int count = topo.neighbours(q, nb, kMaxNeighbours);
+    const int straight = q + (q - p);
+    int next = -1;
+    int others = 0;
+    for (int k = 0; k < count; ++k)
+    {
+      if (nb[k] == p)
+      {
+        continue;
+      }
+      ++others;
+      if (nb[k] == straight && topo.pathOf(nb[k]) == topo.pathOf(q))
+      {
+        next = nb[k];
+      }
+    }
+    if (next < 0 && others == 1)
+    {
+      for (int k = 0; k < count; ++k)
+      {
+        next = nb[k] != p ? nb[k] : next;
+      }
+    }
+    if (next < 0 || next == point)
+    {
+      break;
+    }
+    out[fit.count++] = next;
+  }
+  return fit;
+}
+
+void Tracer::chainAt(const ViewModel& vm,
+  const int* chain,
+  int count,
+  double arc_px,
+  int* segment,
+  double* fraction)
+{
+  double arc = 0.0;
+  for (int i = 0; i + 1 < count; ++i)
+  {
+    const double len = (vm.screen_px(chain[i + 1]) - vm.screen_px(chain[i])).norm();
+    if (arc + len >= arc_px && len > kZeroLength_px)
+    {
+      *segment = i;
+      *fraction = std::clamp((arc_px - arc) / len, 0.0, 1.0);
+      return;
+    }
+    arc += len;
+  }
+  *segment = std::max(0, count - 2);
+  *fraction = 1.0;
+}
+
+double Tracer::reconsiderJunction(const ViewModel& vm, const Vec2& cursor_px)
+{
+  if (this->State != InteractionState::Tracing || this->Junction.point < 0 ||
+      !(this->junctionWindow_px > 0.0) || !cursor_px.isFinite())
+  {
+    return 0.0;
+  }
+  if (!this->Junction.hasCursor)
+  {
+    // The tick the agent passed the junction: the hand's movement is measured from here.
+    this->Junction.hasCursor = true;
+    this->Junction.cursor_px = cursor_px;
+    return 0.0;
+  }
+  const JunctionChoice j = this->Junction;
+  constexpr int kChain = 256;
+  int taken[kChain];
+  int best[kChain];
+  int scratch[kChain];
+  const ChainFit onTaken =
+    this->fitChain(vm, j.point, j.taken, this->junctionWindow_px, taken, kChain);
+  if (onTaken.agentSegment < 0 || onTaken.agentArc_px > this->junctionWindow_px)
+  {
+    this->Junction = {}; // the agent left the branch it took, or is past the window
+    return 0.0;
+  }
+  const Vec2 moved = cursor_px - j.cursor_px;
+  const double reach = moved.norm();
+  if (!(reach > this->junctionMargin_px))
+  {
+    return 0.0; // not enough movement to tell the candidates apart
+  }
+  // Yi & Hayward §3.2.1 on the movement since the junction: its projection on each candidate's
+  // direction (the chord from the junction to where the movement reaches along it), compared by
+  // the perpendicular residual (the same order as the projections: one vector is projected).
+  const Vec2 junction = vm.screen_px(j.point);
+  auto residual = [&vm, &moved, &junction, reach](const int* chain, int count)
+  {
+    int segment = 0;
+    double fraction = 0.0;
+    chainAt(vm, chain, count, reach, &segment, &fraction);
+    const Vec2 at =
+      vm.screen_px(chain[segment]) * (1.0 - fraction) + vm.screen_px(chain[segment + 1]) * fraction;
+    const Vec2 chord = at - junction;
+    const double n = chord.norm();
+    if (!(n > kZeroLength_px))
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+    const double along = moved.dot(chord) / n;
+    return along > 0.0 ? std::sqrt(std::max(0.0, reach * reach - along * along)) : reach - along;
+  };
+  const double takenResidual = residual(taken, onTaken.count);
+  int nb[kMaxNeighbours];
+  const int count = vm.topology().neighbours(j.point, nb, kMaxNeighbours);
+  double bestResidual = takenResidual - this->junctionMargin_px;
+  int bestFirst = -1;
+  int bestCount = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    if (nb[i] == j.entry || nb[i] == j.taken)
+    {
+      continue;
+    }
+    const ChainFit fit =
+      this->fitChain(vm, j.point, nb[i], this->junctionWindow_px, scratch, kChain);
+    const double r = residual(scratch, fit.count);
+    if (r < bestResidual)
+    {
+      bestResidual = r;
+      bestFirst = nb[i];
+      bestCount = fit.count;
+      std::copy(scratch, scratch + fit.count, best);
+    }
+  }
+  if (bestFirst < 0)
+  {
+    return 0.0;
+  }
+  // Back along the branch taken to the junction, then on along the winner as far from the
+  // junction as the agent was (the torsion, arc and direction bookkeeping of advance()).
+  double travelled = this->advance(
+    vm, taken[onTaken.agentSegment], taken[onTaken.agentSegment + 1], onTaken.agentFraction, 0.0);
+  for (int i = onTaken.agentSegment - 1; i >= 0; --i)
+  {
+    travelled += this->advance(vm, taken[i], taken[i + 1], 1.0, 0.0);
+  }
+  int segment = 0;
+  double fraction = 0.0;
+  chainAt(vm, best, bestCount, onTaken.agentArc_px, &segment, &fraction);
+  for (int i = 0; i < segment; ++i)
+  {
+    travelled += this->advance(vm, best[i], best[i + 1], 0.0, 1.0);
+  }
+  const int a = best[segment];
+  const int b = best[segment + 1];
+  if (fraction > 0.0)
+  {
+    travelled += this->advance(vm, a, b, 0.0, fraction);
+  }
+  this->Location = fraction >= 1.0 ? AgentLocation{ b, a, 0.0 }
+                   : fraction > 0.0
+                     ? AgentLocation{ a, b, fraction }
+                     : AgentLocation{ a, segment > 0 ? best[segment - 1] : j.entry, 0.0 };
+  this->Junction = j; // the advance() calls above passed the junction again: keep its record
+  this->Junction.taken = bestFirst;
+  return travelled;
 }
 
 bool Tracer::foldAhead(const ViewModel& vm,
