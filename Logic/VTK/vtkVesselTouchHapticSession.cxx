@@ -185,6 +185,24 @@ void vtkVesselTouchHapticSession::PushParameters()
   p.contactApproachAtStart = this->ContactApproachAtStart;
   p.tracerRule = this->TracerRule;
   p.slopeForceBudget = this->SlopeForceBudget;
+  p.tracerMovementThreshold_px = this->TracerMovementThreshold;
+  p.tracerJunctionWindow_px = this->TracerJunctionWindow;
+  p.tracerJunctionMargin_px = this->TracerJunctionMargin;
+  p.forceInterpolationPerAxis = this->ForceInterpolationPerAxis;
+  p.cohZMaxPerResolution = this->ChangeOfHeightZMaxPerResolution;
+  p.proxyTangentSnap = this->ProxyTangentSnap;
+  p.proxyNormalUnilateral = this->ProxyNormalUnilateral;
+  p.proxyThresholdFromData = this->ProxyThresholdFromData;
+  p.proxyFriction = this->ProxyFriction;
+  p.proxyTickSpacing_mm = this->ProxyTickSpacing;
+  p.proxyTickForce_N = this->ProxyTickForce;
+  p.proxyTickAtBifurcations = this->ProxyTickAtBifurcations;
+  p.proxyFieldForce = this->ProxyFieldForce;
+  p.proxyKappaLow = this->ProxyKappaLow;
+  p.proxyKappaHigh = this->ProxyKappaHigh;
+  p.idleRadius_mm = this->IdleRadius;
+  p.idleDwell_s = this->IdleDwell;
+  p.idleRamp_s = this->IdleRamp;
   s.setParameters(p);
   if (s.captureRadius_px() != this->CaptureRadius)
   {
@@ -785,6 +803,38 @@ int* vtkVesselTouchHapticSession::GetSessionStatus()
   this->SessionStatus[4] = in.HasSkeleton ? static_cast<int>(in.Skeleton.paths.size()) : 0;
   this->SessionStatus[5] = in.HasSkeleton ? static_cast<int>(in.Skeleton.pointCount()) : 0;
   return this->SessionStatus;
+}
+
+double* vtkVesselTouchHapticSession::GetTickOptions()
+{
+  const vtouch::HapticParameters p = this->Internals->Session.parameters();
+  const double values[25] = { static_cast<double>(p.tracerRule),
+    p.tracerMovementThreshold_px,
+    p.tracerJunctionWindow_px,
+    p.tracerJunctionMargin_px,
+    p.contactDwell_s,
+    p.contactApproachAtStart ? 1.0 : 0.0,
+    p.slopeForceBudget,
+    p.forceInterpolationPerAxis ? 1.0 : 0.0,
+    p.maxForceRate_N_per_s,
+    p.cohZMaxPerResolution,
+    p.proxyTangentDrag ? 1.0 : 0.0,
+    p.proxyTangentSnap ? 1.0 : 0.0,
+    p.proxySnapDrag ? 1.0 : 0.0,
+    p.proxyNormalUnilateral ? 1.0 : 0.0,
+    p.proxyThresholdFromData ? 1.0 : 0.0,
+    p.proxyFriction,
+    p.proxyTickSpacing_mm,
+    p.proxyTickForce_N,
+    p.proxyTickAtBifurcations ? 1.0 : 0.0,
+    p.proxyFieldForce ? 1.0 : 0.0,
+    p.proxyKappaLow,
+    p.proxyKappaHigh,
+    p.idleRadius_mm,
+    p.idleDwell_s,
+    p.idleRamp_s };
+  std::copy(values, values + 25, this->TickOptions);
+  return this->TickOptions;
 }
 
 const char* vtkVesselTouchHapticSession::GetLastErrorMessage()

@@ -201,6 +201,63 @@ public:
   vtkSetMacro(SlopeForceBudget, double);
   vtkGetMacro(SlopeForceBudget, double);
 
+  // --- the tick's options (issue 17; vtouch::HapticParameters, Docs/HAPTICS.md) ---
+  /// Movement rule: per-tick projections below this leave the agent still, px. Default 0.01.
+  vtkSetMacro(TracerMovementThreshold, double);
+  vtkGetMacro(TracerMovementThreshold, double);
+  /// Both rules: within this screen arc of the last junction the branch choice follows the hand's
+  /// movement, px (0: the choice at the junction is final). Default 24.
+  vtkSetMacro(TracerJunctionWindow, double);
+  vtkGetMacro(TracerJunctionWindow, double);
+  /// ...re-routing when another branch's residual is smaller by this, px. Default 1.
+  vtkSetMacro(TracerJunctionMargin, double);
+  vtkGetMacro(TracerJunctionMargin, double);
+  /// Time-domain smoothing as Fig. 5 prints it (per-axis threshold, n equal steps) instead of the
+  /// Euclidean bound on the increment. Default off.
+  vtkSetMacro(ForceInterpolationPerAxis, bool);
+  vtkGetMacro(ForceInterpolationPerAxis, bool);
+  vtkBooleanMacro(ForceInterpolationPerAxis, bool);
+  /// Change of height: z_max in counts of the device's position resolution when
+  /// ChangeOfHeightZMax is 0 (Hayward & Yi App. A). Default 2.
+  vtkSetMacro(ChangeOfHeightZMaxPerResolution, double);
+  vtkGetMacro(ChangeOfHeightZMaxPerResolution, double);
+  /// Constraint proxy, Ikits: tangent rule snap-drag (eq. 11, steps of tau; wins over
+  /// ProxyTangentDrag), normal rule unilateral (eq. 10; ProxySnapDrag, the pop-over, wins), the
+  /// pop-over threshold times the frame strength (eq. 16), friction mu in the constraint
+  /// subspace, tick marks every ProxyTickSpacing mm of arc (0: none) of ProxyTickForce N and at
+  /// bifurcations, the depth slope of eq. 2 added as a field force, and the stiffness transfer
+  /// function's knees on the frame strength (eq. 12). Defaults off, off, off, 0, 0 mm, 0.3 N, off,
+  /// off, 0.15, 0.5.
+  vtkSetMacro(ProxyTangentSnap, bool);
+  vtkGetMacro(ProxyTangentSnap, bool);
+  vtkSetMacro(ProxyNormalUnilateral, bool);
+  vtkGetMacro(ProxyNormalUnilateral, bool);
+  vtkSetMacro(ProxyThresholdFromData, bool);
+  vtkGetMacro(ProxyThresholdFromData, bool);
+  vtkSetMacro(ProxyFriction, double);
+  vtkGetMacro(ProxyFriction, double);
+  vtkSetMacro(ProxyTickSpacing, double);
+  vtkGetMacro(ProxyTickSpacing, double);
+  vtkSetMacro(ProxyTickForce, double);
+  vtkGetMacro(ProxyTickForce, double);
+  vtkSetMacro(ProxyTickAtBifurcations, bool);
+  vtkGetMacro(ProxyTickAtBifurcations, bool);
+  vtkSetMacro(ProxyFieldForce, bool);
+  vtkGetMacro(ProxyFieldForce, bool);
+  vtkSetMacro(ProxyKappaLow, double);
+  vtkGetMacro(ProxyKappaLow, double);
+  vtkSetMacro(ProxyKappaHigh, double);
+  vtkGetMacro(ProxyKappaHigh, double);
+  /// Idle gate (devices without pressure, Yi & Hayward 5.2's zero-force zone): a handle resting
+  /// within IdleRadius mm for IdleDwell s (0: never) is silenced over IdleRamp s. Defaults 1 mm,
+  /// 1.5 s, 0.05 s.
+  vtkSetMacro(IdleRadius, double);
+  vtkGetMacro(IdleRadius, double);
+  vtkSetMacro(IdleDwell, double);
+  vtkGetMacro(IdleDwell, double);
+  vtkSetMacro(IdleRamp, double);
+  vtkGetMacro(IdleRamp, double);
+
   // --- running ---
   /// Real-time loop rate, Hz, [100, 10000]. Default 1000.
   vtkSetClampMacro(LoopRate, double, 100.0, 10000.0);
@@ -244,6 +301,14 @@ public:
   /// running (0/1), fault code (0 none), log entries, dropped log entries, skeleton paths,
   /// skeleton points.
   int* GetSessionStatus() VTK_SIZEHINT(6);
+  /// The tick's options as the haptic pipeline holds them (vtouch::HapticParameters, after
+  /// Modified()), in this order: tracer rule, movement threshold (px), junction window (px),
+  /// junction margin (px), contact dwell (s), contact approach at start, slope force budget,
+  /// per-axis interpolation, max force rate (N/s), z_max per resolution, proxy tangent drag,
+  /// tangent snap, pop-over, unilateral, threshold from data, friction, tick spacing (mm), tick
+  /// force (N), ticks at bifurcations, field force, kappa low, kappa high, idle radius (mm),
+  /// idle dwell (s), idle ramp (s).
+  double* GetTickOptions() VTK_SIZEHINT(25);
   /// The last error (configuration, device, camera), "" when none.
   const char* GetLastErrorMessage();
   /// The fault as text ("none" when none) and the real-time scheduling notice.
@@ -328,6 +393,24 @@ private:
   bool ContactApproachAtStart = true;
   int TracerRule = 0;
   double SlopeForceBudget = 0.9;
+  double TracerMovementThreshold = 0.01;
+  double TracerJunctionWindow = 24.0;
+  double TracerJunctionMargin = 1.0;
+  bool ForceInterpolationPerAxis = false;
+  double ChangeOfHeightZMaxPerResolution = 2.0;
+  bool ProxyTangentSnap = false;
+  bool ProxyNormalUnilateral = false;
+  bool ProxyThresholdFromData = false;
+  double ProxyFriction = 0.0;
+  double ProxyTickSpacing = 0.0;
+  double ProxyTickForce = 0.3;
+  bool ProxyTickAtBifurcations = false;
+  bool ProxyFieldForce = false;
+  double ProxyKappaLow = 0.15;
+  double ProxyKappaHigh = 0.5;
+  double IdleRadius = 1.0;
+  double IdleDwell = 1.5;
+  double IdleRamp = 0.05;
   double Crossfade = 0.005;
 
   double LoopRate = 1000.0;
@@ -339,6 +422,7 @@ private:
   double AgentState[23] = {};
   double DeviceForce[3] = {};
   int SessionStatus[6] = {};
+  double TickOptions[25] = {};
 };
 
 #endif

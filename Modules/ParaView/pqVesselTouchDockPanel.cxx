@@ -17,6 +17,7 @@
 #include "qVesselTouchHapticZoomWidget.h"
 #include "qVesselTouchInfoWidget.h"
 #include "qVesselTouchLoopStatsWidget.h"
+#include "qVesselTouchTickOptionsWidget.h"
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
@@ -104,6 +105,7 @@ public:
     v.zoneZeroBelow = this->Ui.zonesWidget->zeroBelow();
     v.zoneSaturateAbove = this->Ui.zonesWidget->saturateAbove();
     v.deviceId = this->Ui.deviceWidget->currentDeviceId();
+    v.tick = this->Ui.tickOptionsWidget->options();
     return v;
   }
 
@@ -119,6 +121,7 @@ public:
     this->Ui.zonesWidget->setThresholds(v.zoneZeroBelow, v.zoneSaturateAbove);
     this->Ui.zonesWidget->setGain_N(v.activeGain_N(zoneGain_N));
     this->Ui.deviceWidget->setCurrentDeviceId(v.deviceId);
+    this->Ui.tickOptionsWidget->setOptions(v.tick);
     this->Syncing = false;
   }
 
@@ -318,6 +321,10 @@ void pqVesselTouchDockPanel::connectWidgets()
     &pqVesselTouchDockPanel::onWidgetsEdited);
   QObject::connect(in.Ui.deviceWidget,
     &qVesselTouchDeviceWidget::deviceSelected,
+    this,
+    &pqVesselTouchDockPanel::onWidgetsEdited);
+  QObject::connect(in.Ui.tickOptionsWidget,
+    &qVesselTouchTickOptionsWidget::optionsChanged,
     this,
     &pqVesselTouchDockPanel::onWidgetsEdited);
 

@@ -12,6 +12,7 @@
 #include "qVesselTouchForceZonesWidget.h"
 #include "qVesselTouchHapticZoomWidget.h"
 #include "qVesselTouchLoopStatsWidget.h"
+#include "qVesselTouchTickOptionsWidget.h"
 
 #include "pqActiveObjects.h"
 #include "pqCoreUtilities.h"
@@ -138,6 +139,16 @@ void pqVesselTouchPanelSelfTest::setWidgets()
   panel.forceLawWidget()->setParameters(law);
   panel.zoomWidget()->setRatio(2.5);
   panel.zonesWidget()->setThresholds(0.1, 0.6);
+  // The Advanced section's tick options (issue 17).
+  if (auto* tick = panel.findChild<qVesselTouchTickOptionsWidget*>("tickOptionsWidget"))
+  {
+    qVesselTouchTickOptions options = tick->options();
+    options.tracerJunctionWindow_px = 12.0;
+    options.proxyTickSpacing_mm = 2.0;
+    options.proxyTangentSnap = true;
+    options.idleDwell_s = 3.0;
+    tick->setOptions(options);
+  }
   this->Report.insert("zones_gain_N", panel.zonesWidget()->gain_N());
   QTimer::singleShot(kSettleTime_ms, this, &pqVesselTouchPanelSelfTest::pickAndExtract);
 }
@@ -379,12 +390,18 @@ QJsonObject pqVesselTouchPanelSelfTest::sessionValues() const
   {
     return values;
   }
-  for (const char* name : { "ForceLaw", "DeviceType" })
+  for (const char* name : { "ForceLaw", "DeviceType", "ProxyTangentSnap" })
   {
     values.insert(name, vtkSMPropertyHelper(session, name).GetAsInt());
   }
-  for (const char* name :
-    { "ChangeOfHeightLambda", "ZoneGain", "Zoom", "ZoneZeroBelow", "ZoneSaturateAbove" })
+  for (const char* name : { "ChangeOfHeightLambda",
+         "ZoneGain",
+         "Zoom",
+         "ZoneZeroBelow",
+         "ZoneSaturateAbove",
+         "TracerJunctionWindow",
+         "ProxyTickSpacing",
+         "IdleDwell" })
   {
     values.insert(name, vtkSMPropertyHelper(session, name).GetAsDouble());
   }
@@ -399,6 +416,12 @@ QJsonObject pqVesselTouchPanelSelfTest::sessionValues() const
     object.insert("ZoneZeroBelow", vtk->GetZoneZeroBelow());
     object.insert("ZoneSaturateAbove", vtk->GetZoneSaturateAbove());
     object.insert("DeviceType", vtk->GetDeviceType());
+    // The tick options as the haptic pipeline holds them (GetTickOptions' order).
+    const double* tick = vtk->GetTickOptions();
+    object.insert("TracerJunctionWindow", tick[2]);
+    object.insert("ProxyTangentSnap", static_cast<int>(tick[11]));
+    object.insert("ProxyTickSpacing", tick[16]);
+    object.insert("IdleDwell", tick[23]);
     values.insert("vtk_object", object);
   }
   values.insert("registration_name", QString(pqVesselTouchSessionBinding::registrationName()));

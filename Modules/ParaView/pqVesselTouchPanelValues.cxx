@@ -29,7 +29,58 @@ const char* const kProxyProperties[] = { "ForceLaw",
   "ZoneZeroBelow",
   "ZoneSaturateAbove",
   "Zoom",
-  "DeviceType" };
+  "DeviceType",
+  "ProxyKappaLow",
+  "ProxyKappaHigh",
+  "TracerRule",
+  "TracerMovementThreshold",
+  "TracerJunctionWindow",
+  "TracerJunctionMargin",
+  "ContactDwell",
+  "ContactApproachAtStart",
+  "SlopeForceBudget",
+  "ForceInterpolationPerAxis",
+  "ChangeOfHeightZMaxPerResolution",
+  "ProxyTangentSnap",
+  "ProxyNormalUnilateral",
+  "ProxyThresholdFromData",
+  "ProxyFriction",
+  "ProxyTickSpacing",
+  "ProxyTickForce",
+  "ProxyTickAtBifurcations",
+  "ProxyFieldForce",
+  "IdleRadius",
+  "IdleDwell",
+  "IdleRamp" };
+
+/// The tick options' session properties (int properties hold the bools and the rule).
+struct TickProperty
+{
+  const char* name;
+  double qVesselTouchTickOptions::*value;
+  bool qVesselTouchTickOptions::*flag;
+};
+const TickProperty kTickProperties[] = {
+  { "TracerMovementThreshold", &qVesselTouchTickOptions::tracerMovementThreshold_px, nullptr },
+  { "TracerJunctionWindow", &qVesselTouchTickOptions::tracerJunctionWindow_px, nullptr },
+  { "TracerJunctionMargin", &qVesselTouchTickOptions::tracerJunctionMargin_px, nullptr },
+  { "ContactDwell", &qVesselTouchTickOptions::contactDwell_s, nullptr },
+  { "ContactApproachAtStart", nullptr, &qVesselTouchTickOptions::contactApproachAtStart },
+  { "SlopeForceBudget", &qVesselTouchTickOptions::slopeForceBudget, nullptr },
+  { "ForceInterpolationPerAxis", nullptr, &qVesselTouchTickOptions::forceInterpolationPerAxis },
+  { "ChangeOfHeightZMaxPerResolution", &qVesselTouchTickOptions::cohZMaxPerResolution, nullptr },
+  { "ProxyTangentSnap", nullptr, &qVesselTouchTickOptions::proxyTangentSnap },
+  { "ProxyNormalUnilateral", nullptr, &qVesselTouchTickOptions::proxyNormalUnilateral },
+  { "ProxyThresholdFromData", nullptr, &qVesselTouchTickOptions::proxyThresholdFromData },
+  { "ProxyFriction", &qVesselTouchTickOptions::proxyFriction, nullptr },
+  { "ProxyTickSpacing", &qVesselTouchTickOptions::proxyTickSpacing_mm, nullptr },
+  { "ProxyTickForce", &qVesselTouchTickOptions::proxyTickForce_N, nullptr },
+  { "ProxyTickAtBifurcations", nullptr, &qVesselTouchTickOptions::proxyTickAtBifurcations },
+  { "ProxyFieldForce", nullptr, &qVesselTouchTickOptions::proxyFieldForce },
+  { "IdleRadius", &qVesselTouchTickOptions::idleRadius_mm, nullptr },
+  { "IdleDwell", &qVesselTouchTickOptions::idleDwell_s, nullptr },
+  { "IdleRamp", &qVesselTouchTickOptions::idleRamp_s, nullptr },
+};
 
 template<typename T>
 void loadValue(const QSettings& settings, const char* key, T& value)
@@ -93,6 +144,20 @@ void pqVesselTouchPanelValues::writeToProxy(vtkSMProxy* session, double zoneGain
   vtkSMPropertyHelper(session, "ProxyTangentThreshold").Set(this->law.proxyTangentThreshold_N);
   vtkSMPropertyHelper(session, "ProxySnapDrag").Set(this->law.proxySnapDrag ? 1 : 0);
   vtkSMPropertyHelper(session, "ProxySnapThreshold").Set(this->law.proxySnapThreshold_N);
+  vtkSMPropertyHelper(session, "ProxyKappaLow").Set(this->law.proxyKappaLow);
+  vtkSMPropertyHelper(session, "ProxyKappaHigh").Set(this->law.proxyKappaHigh);
+  vtkSMPropertyHelper(session, "TracerRule").Set(this->tick.tracerRule);
+  for (const TickProperty& p : kTickProperties)
+  {
+    if (p.value)
+    {
+      vtkSMPropertyHelper(session, p.name).Set(this->tick.*(p.value));
+    }
+    else
+    {
+      vtkSMPropertyHelper(session, p.name).Set(this->tick.*(p.flag) ? 1 : 0);
+    }
+  }
   vtkSMPropertyHelper(session, "ZoneGain").Set(zoneGain_N);
   vtkSMPropertyHelper(session, "ZoneZeroBelow").Set(this->zoneZeroBelow);
   vtkSMPropertyHelper(session, "ZoneSaturateAbove").Set(this->zoneSaturateAbove);
@@ -125,6 +190,20 @@ double pqVesselTouchPanelValues::readFromProxy(vtkSMProxy* session)
     vtkSMPropertyHelper(session, "ProxyTangentThreshold").GetAsDouble();
   this->law.proxySnapDrag = vtkSMPropertyHelper(session, "ProxySnapDrag").GetAsInt() != 0;
   this->law.proxySnapThreshold_N = vtkSMPropertyHelper(session, "ProxySnapThreshold").GetAsDouble();
+  this->law.proxyKappaLow = vtkSMPropertyHelper(session, "ProxyKappaLow").GetAsDouble();
+  this->law.proxyKappaHigh = vtkSMPropertyHelper(session, "ProxyKappaHigh").GetAsDouble();
+  this->tick.tracerRule = vtkSMPropertyHelper(session, "TracerRule").GetAsInt();
+  for (const TickProperty& p : kTickProperties)
+  {
+    if (p.value)
+    {
+      this->tick.*(p.value) = vtkSMPropertyHelper(session, p.name).GetAsDouble();
+    }
+    else
+    {
+      this->tick.*(p.flag) = vtkSMPropertyHelper(session, p.name).GetAsInt() != 0;
+    }
+  }
   const double zoneGain_N = vtkSMPropertyHelper(session, "ZoneGain").GetAsDouble();
   this->setActiveGain_N(zoneGain_N);
   this->zoneZeroBelow = vtkSMPropertyHelper(session, "ZoneZeroBelow").GetAsDouble();
@@ -170,6 +249,14 @@ void pqVesselTouchPanelValues::save(QSettings& settings) const
   settings.setValue(kPrefix + "ZoneZeroBelow", this->zoneZeroBelow);
   settings.setValue(kPrefix + "ZoneSaturateAbove", this->zoneSaturateAbove);
   settings.setValue(kPrefix + "Device", this->deviceId);
+  settings.setValue(kPrefix + "ProxyKappaLow", this->law.proxyKappaLow);
+  settings.setValue(kPrefix + "ProxyKappaHigh", this->law.proxyKappaHigh);
+  settings.setValue(kPrefix + "TracerRule", this->tick.tracerRule);
+  for (const TickProperty& p : kTickProperties)
+  {
+    settings.setValue(
+      kPrefix + p.name, p.value ? QVariant(this->tick.*(p.value)) : QVariant(this->tick.*(p.flag)));
+  }
 }
 
 void pqVesselTouchPanelValues::load(const QSettings& settings)
@@ -193,6 +280,20 @@ void pqVesselTouchPanelValues::load(const QSettings& settings)
   loadValue(settings, "ZoneZeroBelow", this->zoneZeroBelow);
   loadValue(settings, "ZoneSaturateAbove", this->zoneSaturateAbove);
   loadValue(settings, "Device", this->deviceId);
+  loadValue(settings, "ProxyKappaLow", this->law.proxyKappaLow);
+  loadValue(settings, "ProxyKappaHigh", this->law.proxyKappaHigh);
+  loadValue(settings, "TracerRule", this->tick.tracerRule);
+  for (const TickProperty& p : kTickProperties)
+  {
+    if (p.value)
+    {
+      loadValue(settings, p.name, this->tick.*(p.value));
+    }
+    else
+    {
+      loadValue(settings, p.name, this->tick.*(p.flag));
+    }
+  }
 }
 
 bool pqVesselTouchPanelValues::proxyHasDefaults(vtkSMProxy* session)

@@ -5,6 +5,7 @@
 #define pqVesselTouchPanelValues_h
 
 #include "qVesselTouchForceLawParameters.h"
+#include "qVesselTouchTickOptionsWidget.h"
 
 #include <QString>
 
@@ -23,6 +24,8 @@ struct pqVesselTouchPanelValues
   /// Force zones thresholds (normalized pressure). Defaults 0.05 and 0.5.
   double zoneZeroBelow = 0.05;
   double zoneSaturateAbove = 0.5;
+  /// The haptic tick's options (the Advanced section; the widget's struct and defaults).
+  qVesselTouchTickOptions tick;
   /// Device id as the device widget names it: "simulated", "pointer", "replay" or
   /// "hid:<hidapi path>". Default "simulated".
   QString deviceId = QStringLiteral("simulated");

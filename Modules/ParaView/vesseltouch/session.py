@@ -44,6 +44,14 @@ DEVICES = {"simulated": 0, "pointer": 1, "mouse": 1, "replay": 2, "hid": 3}
 _STATISTICS = ("nominal_rate_Hz", "achieved_rate_Hz", "ticks", "overruns", "skipped_deadlines",
                "period_error_p50_us", "period_error_p99_us", "period_error_p999_us",
                "period_error_max_us", "tick_cost_p50_us", "tick_cost_p99_us", "tick_cost_max_us")
+_TICK_OPTIONS = ("tracer_rule", "movement_threshold_px", "junction_window_px",
+                 "junction_margin_px", "contact_dwell_s", "contact_approach_at_start",
+                 "slope_force_budget", "per_axis_smoothing", "max_force_rate_N_per_s",
+                 "z_max_per_resolution", "proxy_tangent_drag", "proxy_tangent_snap",
+                 "proxy_popover", "proxy_unilateral", "proxy_threshold_from_data",
+                 "proxy_friction", "proxy_tick_spacing_mm", "proxy_tick_force_N",
+                 "proxy_tick_at_bifurcations", "proxy_field_force", "proxy_kappa_low",
+                 "proxy_kappa_high", "idle_radius_mm", "idle_dwell_s", "idle_ramp_s")
 _LOG_COLUMNS = {"Time": "time", "Hand": "hand", "Cursor": "cursor", "State": "state",
                 "Path": "path", "Point": "point", "Position": "position",
                 "TargetForce": "target_force", "Force": "force"}
@@ -279,12 +287,13 @@ class HapticSession(object):
     # --- force -----------------------------------------------------------------------------
     def SetForceLaw(self, law, k=None, lambda_mm=None, z_max_mm=None, forget_time_s=None,
                     probe_px=None, k_c=None, b_c=None, tau_t=None, snap_N=None,
-                    tangent_drag=None, snap_drag=None):
+                    tangent_drag=None, snap_drag=None, z_max_counts=None):
         """'LDGF', 'ChangeOfHeight', 'LateralGradient', 'ConstraintProxy' or 'None', with the
         law's parameters: ``k`` (N, the force-zone gain k(P) in the saturation zone),
         ``lambda_mm`` (LDGF / change of height), ``z_max_mm`` (change of height, Hayward & Yi
-        eq. 8; 0 = two counts of the device's resolution; ``forget_time_s`` is ignored: eqs. 8-9
-        have no forgetting factor), ``probe_px`` (lateral gradient), ``k_c`` (N/m), ``b_c`` (N s/m), ``tau_t``,
+        eq. 8; 0 = ``z_max_counts`` (default 2) counts of the device's resolution;
+        ``forget_time_s`` is ignored: eqs. 8-9 have no forgetting factor), ``probe_px`` (lateral
+        gradient), ``k_c`` (N/m), ``b_c`` (N s/m), ``tau_t``,
         ``snap_N`` (N), ``tangent_drag``, ``snap_drag`` (constraint proxy). Switching is
         crossfaded (no force jump)."""
         try:
@@ -297,6 +306,7 @@ class HapticSession(object):
         if lambda_mm is not None:
             props["ChangeOfHeightLambda" if value == 1 else "LdgfLambda"] = lambda_mm
         optional = (("ChangeOfHeightZMax", z_max_mm), ("ChangeOfHeightForgetTime", forget_time_s),
+                    ("ChangeOfHeightZMaxPerResolution", z_max_counts),
                     ("LateralProbe", probe_px), ("ProxyStiffness", k_c), ("ProxyDamping", b_c),
                     ("ProxyTangentThreshold", tau_t), ("ProxySnapThreshold", snap_N))
         for name, v in optional:
@@ -320,13 +330,104 @@ class HapticSession(object):
             props["ContactApproachAtStart"] = 1 if approach_at_start else 0
         self._set(**props)
 
-    def SetTracerRule(self, rule):
-        """'offset' (default) or 'movement' (Yi & Hayward section 3.2.1 as written)."""
-        rules = {"offset": 0, "movement": 1}
-        key = str(rule).lower()
-        if key not in rules:
-            raise ValueError("unknown tracer rule %r (offset or movement)" % (rule,))
-        self._set(TracerRule=rules[key])
+    def SetTracerRule(self, rule=None, movement_threshold_px=None, junction_window_px=None,
+                      junction_margin_px=None):
+        """``rule``: 'offset' (default) or 'movement' (Yi & Hayward section 3.2.1 as written);
+        ``movement_threshold_px``: the movement rule's threshold (per-tick projections below it
+        leave the agent still, default 0.01 px); ``junction_window_px`` / ``junction_margin_px``:
+        within that screen arc of the last junction the branch choice follows the hand's movement
+        since the junction, re-routing when another branch's residual is smaller by the margin
+        (defaults 24 px and 1 px; a window of 0 makes the choice at the junction final)."""
+        props = {}
+        if rule is not None:
+            rules = {"offset": 0, "movement": 1}
+            key = str(rule).lower()
+            if key not in rules:
+                raise ValueError("unknown tracer rule %r (offset or movement)" % (rule,))
+            props["TracerRule"] = rules[key]
+        optional = (("TracerMovementThreshold", movement_threshold_px),
+                    ("TracerJunctionWindow", junction_window_px),
+                    ("TracerJunctionMargin", junction_margin_px))
+        for name, v in optional:
+            if v is not None:
+                props[name] = float(v)
+        self._set(**props)
+
+    def SetForceSmoothing(self, max_rate_N_per_s=None, per_axis=None, slope_force_budget=None):
+        """Yi & Hayward section 4.2: large force steps are spread over several ticks, at most
+        ``max_rate_N_per_s`` (default 100 N/s; a Euclidean bound on the increment, or with
+        ``per_axis`` Fig. 5 as printed: a per-axis threshold and n equal steps). Section 4.1:
+        ``slope_force_budget`` is the fraction of the device's force limit the slope laws may
+        reach where a vessel runs along the view direction (lambda is sized from it; default 0.9,
+        0 keeps lambda as set)."""
+        props = {}
+        if max_rate_N_per_s is not None:
+            props["MaxForceRate"] = float(max_rate_N_per_s)
+        if per_axis is not None:
+            props["ForceInterpolationPerAxis"] = 1 if per_axis else 0
+        if slope_force_budget is not None:
+            props["SlopeForceBudget"] = float(slope_force_budget)
+        self._set(**props)
+
+    def SetConstraintProxy(self, tangent_rule=None, normal_rule=None, threshold_from_data=None,
+                           friction=None, tick_spacing_mm=None, tick_force_N=None,
+                           tick_at_bifurcations=None, field_force=None, kappa_low=None,
+                           kappa_high=None):
+        """The constraint proxy's rules (Ikits et al.): ``tangent_rule`` 'free' (eq. 9),
+        'drag' (eq. 8) or 'snap' (eq. 11: steps of tau); ``normal_rule`` 'rigid', 'unilateral'
+        (eq. 10) or 'popover' (to the vessel under the cursor when pushed past the snap
+        threshold); ``threshold_from_data``: the pop-over threshold times the frame strength
+        (eq. 16); ``friction`` mu in the constraint subspace; tick marks every
+        ``tick_spacing_mm`` of arc (0: none) of ``tick_force_N`` and ``tick_at_bifurcations``;
+        ``field_force``: the depth slope of Yi & Hayward's eq. 2 added along the vessel;
+        ``kappa_low`` / ``kappa_high``: the stiffness transfer function's knees (eq. 12)."""
+        props = {}
+        if tangent_rule is not None:
+            rules = {"free": (0, 0), "drag": (1, 0), "snap": (0, 1)}
+            key = _key(tangent_rule)
+            if key not in rules:
+                raise ValueError("unknown tangent rule %r (free, drag or snap)" % (tangent_rule,))
+            props["ProxyTangentDrag"], props["ProxyTangentSnap"] = rules[key]
+        if normal_rule is not None:
+            rules = {"rigid": (0, 0), "unilateral": (0, 1), "popover": (1, 0)}
+            key = _key(normal_rule)
+            if key not in rules:
+                raise ValueError("unknown normal rule %r (rigid, unilateral or popover)"
+                                 % (normal_rule,))
+            props["ProxySnapDrag"], props["ProxyNormalUnilateral"] = rules[key]
+        flags = (("ProxyThresholdFromData", threshold_from_data),
+                 ("ProxyTickAtBifurcations", tick_at_bifurcations),
+                 ("ProxyFieldForce", field_force))
+        for name, v in flags:
+            if v is not None:
+                props[name] = 1 if v else 0
+        values = (("ProxyFriction", friction), ("ProxyTickSpacing", tick_spacing_mm),
+                  ("ProxyTickForce", tick_force_N), ("ProxyKappaLow", kappa_low),
+                  ("ProxyKappaHigh", kappa_high))
+        for name, v in values:
+            if v is not None:
+                props[name] = float(v)
+        self._set(**props)
+
+    def SetIdleGate(self, radius_mm=None, dwell_s=None, ramp_s=None):
+        """The zero-force zone of devices without pressure (Yi & Hayward section 5.2): a handle
+        resting within ``radius_mm`` (default 1 mm) for ``dwell_s`` (default 1.5 s; 0 never) is
+        silenced over ``ramp_s`` (default 0.05 s); moving out of the radius restores the force."""
+        props = {}
+        for name, v in (("IdleRadius", radius_mm), ("IdleDwell", dwell_s), ("IdleRamp", ramp_s)):
+            if v is not None:
+                props[name] = float(v)
+        self._set(**props)
+
+    def GetTickOptions(self):
+        """The tick's options as the haptic pipeline holds them (what reached the C++ session),
+        as a dict: tracer_rule, movement_threshold_px, junction_window_px, junction_margin_px,
+        contact_dwell_s, contact_approach_at_start, slope_force_budget, per_axis_smoothing,
+        max_force_rate_N_per_s, z_max_per_resolution, proxy_tangent_drag, proxy_tangent_snap,
+        proxy_popover, proxy_unilateral, proxy_threshold_from_data, proxy_friction,
+        proxy_tick_spacing_mm, proxy_tick_force_N, proxy_tick_at_bifurcations, proxy_field_force,
+        proxy_kappa_low, proxy_kappa_high, idle_radius_mm, idle_dwell_s, idle_ramp_s."""
+        return dict(zip(_TICK_OPTIONS, self._info("TickOptionsInfo")))
 
     def SetZoom(self, r):
         """Haptic zoom r = cursor movement / hand movement, clamped to [0.1, 10]."""
