@@ -23,8 +23,10 @@ struct qVesselTouchForceLawParameters
   /// Change-of-height regularization lambda, mm. Default 0.01 mm, range [0.001, 10] mm.
   double cohLambda_mm = 0.01;
   /// Motion window saturation length z_max, mm of hand travel: |mu| reaches 1 after z_max of
-  /// deliberate motion. Default 1 mm, range [0.05, 20] mm.
-  double cohZMax_mm = 1.0;
+  /// deliberate motion. 0 (default) = from the device ("set according to the resolution of a
+  /// particular device", Hayward & Yi App. A: two counts of its position resolution). Range
+  /// [0, 20] mm.
+  double cohZMax_mm = 0.0;
   /// Motion window forgetting time constant T, seconds. Default 0.1 s, range [0.005, 5] s.
   double cohForgetTime_s = 0.1;
 

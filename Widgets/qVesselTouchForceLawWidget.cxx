@@ -47,7 +47,7 @@ void writePreset(ForceLaw law, int preset, Parameters& p)
     case ForceLaw::ChangeOfHeight:
       p.cohGain_N = pick(0.5, 1.0, 2.0);
       p.cohLambda_mm = pick(0.05, 0.01, 0.005);
-      p.cohZMax_mm = pick(2.0, 1.0, 0.5);
+      p.cohZMax_mm = 0.0; // from the device's resolution (App. A), whatever the feel
       p.cohForgetTime_s = pick(0.2, 0.1, 0.05);
       break;
     case ForceLaw::LateralGradient:
