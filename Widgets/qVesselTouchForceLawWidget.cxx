@@ -69,9 +69,9 @@ void writePreset(ForceLaw law, int preset, Parameters& p)
     case ForceLaw::ChangeOfHeight:
       p.cohGain_N = gain_N;
       h.cohLambda_mm = scaled(Id::ChangeOfHeightLambda, 5.0, 0.5);
-      // z_max: 0 (the default) sets it from the device's resolution; gentle and firm fix it.
-      h.cohZMax_mm =
-        preset == 0 ? 2.0 : (preset == 1 ? row(Id::ChangeOfHeightZMax).defaultValue : 0.5);
+      // z_max: the table's default 0 sets it from the device's resolution (Hayward & Yi App. A),
+      // whatever the feel.
+      h.cohZMax_mm = row(Id::ChangeOfHeightZMax).defaultValue;
       break;
     case ForceLaw::LateralGradient:
       p.lateralGain_N = gain_N;

@@ -1,6 +1,7 @@
 #include "vtouchChangeOfHeightForceLaw.h"
 #include "vtouchLdgfForceLaw.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vtouch
@@ -38,8 +39,37 @@ Vec2 ChangeOfHeightForceLaw::mu() const
 
 Vec2 ChangeOfHeightForceLaw::compute(const ForceInput& in, ForceRequest&) noexcept
 {
-  // W trails P in every state, so mu is ready at contact.
+  // The slope along the vessel (eq. 2's regularized dz/dl), when tracing.
+  const bool tracing = in.state == InteractionState::Tracing;
+  const AgentSample& at = in.slopeSample();
+  const double denominator = tracing
+                               ? std::fabs(at.dl_mm) + LdgfForceLaw::boundingLambda_mm(
+                                                         this->lambda_mm, in, this->forceBudget)
+                               : 0.0;
+  const double slope = denominator > 0.0 ? at.dz_mm / denominator : 0.0;
+  // z_max: from the resolution, and at least k |s| / K_max so that the reversal is a spring the
+  // device renders stably (see the header).
+  const double previousZMax_mm = this->ZMax_mm;
   this->ZMax_mm = this->zMaxFor(in.capabilities);
+  const DeviceCapabilities* caps = in.capabilities;
+  if (this->boundReversalStiffness && caps && caps->maxStiffness_N_per_m > 0.0 && in.dt_s > 0.0)
+  {
+    const double stiffness_N_per_mm = caps->maxStiffness_N_per_m * (1e-3 / in.dt_s) * 1e-3;
+    const double reversal_mm = std::fabs(in.zoneGain_N * slope) / stiffness_N_per_mm;
+    if (std::isfinite(reversal_mm))
+    {
+      this->ZMax_mm = std::max(this->ZMax_mm, reversal_mm);
+    }
+  }
+  // W trails P in every state, so mu is ready at contact. When z_max changes, W is moved so that
+  // mu is unchanged (a hand moving onto a steeper slope keeps |mu| = 1): the recursion is then
+  // mu_k = Pi(mu_{k-1} + dP_k / z_max_k), Pi the projection on the unit disc, which for a
+  // constant z_max is eqs. 8-9 exactly.
+  if (this->ZMax_mm != previousZMax_mm && previousZMax_mm > 0.0)
+  {
+    this->Trail =
+      this->Position - (this->Position - this->Trail) * (this->ZMax_mm / previousZMax_mm);
+  }
   if (in.handDelta_Device_mm.isFinite())
   {
     this->Position = this->Position + in.handDelta_Device_mm;
@@ -50,13 +80,7 @@ Vec2 ChangeOfHeightForceLaw::compute(const ForceInput& in, ForceRequest&) noexce
   {
     this->Trail = this->Position - z * (this->ZMax_mm / n);
   }
-  if (in.state != InteractionState::Tracing)
-  {
-    return {};
-  }
-  const double denominator = std::fabs(in.agent.dl_mm) + LdgfForceLaw::boundingLambda_mm(
-                                                           this->lambda_mm, in, this->forceBudget);
-  if (!(denominator > 0.0))
+  if (!tracing || !(denominator > 0.0))
   {
     return {};
   }
@@ -67,8 +91,7 @@ Vec2 ChangeOfHeightForceLaw::compute(const ForceInput& in, ForceRequest&) noexce
     return {};
   }
   // eq. 3: -k (dh/dl) mu with dh/dl = -s (eta . u), u = mu / |mu|.
-  const double slope = in.agent.dz_mm / denominator;
-  return m * (in.zoneGain_N * slope * in.agent.eta.dot(m) / magnitude);
+  return m * (in.zoneGain_N * slope * at.eta.dot(m) / magnitude);
 }
 
 } // namespace vtouch

@@ -28,6 +28,16 @@ namespace vtouch
 /// is "set according to the resolution of a particular device": zMaxPerResolution counts of the
 /// device's positionResolution_mm. A zero force at rest is not this law's business: it comes from
 /// the force zones (k(P) = 0 for a lifted stylus, or the idle gate of devices without pressure).
+///
+/// Passivity of the reversal (departure, `boundReversalStiffness`): while |P - W| < z_max the
+/// force is |f| = k |s| |P - W| / z_max, a spring of stiffness k |s| / z_max anchored at W. With
+/// z_max at two resolution counts (10 um) and k |s| up to 2.7 N that is 270 kN/m, far above what a
+/// device renders stably at its rate (a sampled spring needs b > K T / 2, Colgate & Schenkel), and
+/// a hand resting on a slope against a soft grip rings in it (0.13 mm, 80 Hz on the simulated
+/// stylus). So z_max is at least k |s| / K_max, with K_max the device's largest stable stiffness
+/// (DeviceCapabilities::maxStiffness_N_per_m, scaled by rate / 1 kHz as for the proxy coupler):
+/// within a reversal the force is then a spring of at most K_max anchored at W, saturating at the
+/// slope force. The resolution's z_max stays the floor (noise still never flips mu).
 class ChangeOfHeightForceLaw final : public ForceLaw
 {
 public:
@@ -43,6 +53,9 @@ public:
   double zMaxPerResolution = 2.0;
   /// z_max when the device reports no resolution, mm. Default 0.02 mm.
   double zMaxFallback_mm = 0.02;
+  /// z_max >= k |s| / K_max (above): the reversal is never stiffer than the device renders
+  /// stably. Default true; false gives z_max from the resolution alone.
+  bool boundReversalStiffness = true;
 
   ForceLawId id() const override { return ForceLawId::ChangeOfHeight; }
   void reset() noexcept override;

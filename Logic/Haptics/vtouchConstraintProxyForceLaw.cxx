@@ -177,8 +177,9 @@ Vec2 ConstraintProxyForceLaw::compute(const ForceInput& in, ForceRequest& reques
   if (this->fieldForce)
   {
     const double lambda = LdgfForceLaw::boundingLambda_mm(this->fieldLambda_mm, in, 0.9);
-    secondary = secondary + LdgfForceLaw::evaluate(
-                              in.zoneGain_N, in.agent.dz_mm, in.agent.dl_mm, in.agent.eta, lambda);
+    const AgentSample& at = in.slopeSample();
+    secondary =
+      secondary + LdgfForceLaw::evaluate(in.zoneGain_N, at.dz_mm, at.dl_mm, at.eta, lambda);
   }
 
   if (this->normalRule == NormalRule::PopOver)

@@ -28,7 +28,14 @@ struct ForceInput
 {
   const ViewModel* view = nullptr; ///< never null when a law is called
   InteractionState state = InteractionState::Exploring;
-  AgentSample agent;                 ///< valid only while tracing
+  AgentSample agent; ///< valid only while tracing
+  /// Where the slope laws read dz, dl and eta (valid only while tracing, when hasSlope): the
+  /// cursor's projection on the vessel within the tracer's dead band of the agent
+  /// (Tracer::locationToward), so the slope field is a function of the hand's position and not
+  /// of the dead band's history. Without it (hasSlope false) the agent's sample is used.
+  AgentSample slope;
+  bool hasSlope = false;
+  const AgentSample& slopeSample() const { return this->hasSlope ? this->slope : this->agent; }
   Vec2 cursor_px;                    ///< cursor on the screen, pixels
   Vec2 handDelta_Device_mm;          ///< hand motion since the previous tick (device plane)
   Vec2 handVelocity_Device_mm_per_s; ///< from the device's velocity estimator

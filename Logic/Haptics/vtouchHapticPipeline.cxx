@@ -98,6 +98,10 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
                                        : 0.01;
   this->Trace.foldLookAhead_px =
     std::isfinite(p.tracerFoldLookAhead_px) ? std::max(0.0, p.tracerFoldLookAhead_px) : 3.0;
+  this->Trace.junctionWindow_px =
+    std::isfinite(p.tracerJunctionWindow_px) ? std::max(0.0, p.tracerJunctionWindow_px) : 24.0;
+  this->Trace.junctionMargin_px =
+    std::isfinite(p.tracerJunctionMargin_px) ? std::max(0.0, p.tracerJunctionMargin_px) : 1.0;
 }
 
 Vec2 HapticPipeline::renderLaws(const ForceInput& fin,
@@ -219,13 +223,18 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
         // Ikits eq. 11: the proxy moves only in the law's steps (ForceRequest::agentStep_px).
         this->Trace.trail_px = 0.0;
       }
-      else if (p.tracerRule == 1)
-      {
-        this->Trace.followMovement(*vm, this->Cursor - cursorBefore);
-      }
       else
       {
-        this->Trace.follow(*vm, this->Cursor);
+        if (p.tracerRule == 1)
+        {
+          this->Trace.followMovement(*vm, this->Cursor - cursorBefore);
+        }
+        else
+        {
+          this->Trace.follow(*vm, this->Cursor);
+        }
+        // The branch choice of the last junction follows the hand (both rules).
+        this->Trace.reconsiderJunction(*vm, this->Cursor);
       }
     }
   }
@@ -237,9 +246,23 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
   {
     fin.view = vm;
     fin.state = this->Trace.state();
+    // The location the position-dependent forces (the slope laws' dz/dl, tick marks) read: with
+    // the offset rule, the cursor's projection within the dead band of the agent, so that the
+    // force is a function of the hand's position, not of the dead band's history (a backlash in
+    // a steep field does net work on the hand each cycle: Tracer::locationToward).
+    AgentLocation forceAt = this->Trace.location();
+    double forceArc_mm = this->Trace.arcLength_mm();
     if (fin.state == InteractionState::Tracing)
     {
       fin.agent = this->Trace.sample(*vm);
+      if (p.tracerRule != 1 && this->Trace.deadBand_px > 0.0)
+      {
+        double lead_mm = 0.0;
+        forceAt = this->Trace.locationToward(*vm, this->Cursor, this->Trace.deadBand_px, &lead_mm);
+        forceArc_mm += lead_mm;
+        fin.slope = Tracer::sampleAt(*vm, forceAt);
+        fin.hasSlope = true;
+      }
     }
     fin.cursor_px = this->Cursor;
     fin.handDelta_Device_mm = handDelta;
@@ -258,11 +281,9 @@ AgentState HapticPipeline::step(const TickInput& in, const HapticParameters& p) 
     }
     fin.maxZoneGain_N = std::max(0.0, this->Zones.gain_N);
     fin.slopeWindow_mm = vm->topology().slopeWindow_mm();
-    fin.agentArc_mm = this->Trace.arcLength_mm();
-    {
-      const AgentLocation& at = this->Trace.location();
-      fin.bifurcationOffset_mm = vm->topology().bifurcationOffset_mm(at.from, at.to, at.t);
-    }
+    fin.agentArc_mm = forceArc_mm;
+    fin.bifurcationOffset_mm =
+      vm->topology().bifurcationOffset_mm(forceAt.from, forceAt.to, forceAt.t);
     fin.dt_s = in.dt_s;
     fin.capabilities = in.capabilities;
     ForceRequest req;

@@ -40,7 +40,8 @@ Vec2 LdgfForceLaw::compute(const ForceInput& in, ForceRequest&) noexcept
     return {};
   }
   const double lambda = boundingLambda_mm(this->lambda_mm, in, this->forceBudget);
-  return evaluate(in.zoneGain_N, in.agent.dz_mm, in.agent.dl_mm, in.agent.eta, lambda);
+  const AgentSample& at = in.slopeSample();
+  return evaluate(in.zoneGain_N, at.dz_mm, at.dl_mm, at.eta, lambda);
 }
 
 } // namespace vtouch

@@ -115,10 +115,12 @@ std::shared_ptr<const SceneTopology> SceneTopology::build(const QSkeleton& skele
         const double r2 = (s2 / s1) * (s2 / s1);
         e.innerWeight = r2 / ((r2 - 1.0) * s1);
         e.outerWeight = 1.0 / ((r2 - 1.0) * s2);
+        e.plainWeight = 1.0 / s1;
       }
       else if (s1 > 0.0)
       {
         e.innerWeight = 1.0 / s1;
+        e.plainWeight = 1.0 / s1;
       }
     }
     g += m;
@@ -132,8 +134,31 @@ std::shared_ptr<const SceneTopology> SceneTopology::build(const QSkeleton& skele
   for (std::size_t i = 0; i < n; ++i)
   {
     const StencilEntry& e = t->Stencil[i];
-    t->TangentEstimate[i] = (t->Position[e.hiInner] - t->Position[e.loInner]) * e.innerWeight -
-                            (t->Position[e.hiOuter] - t->Position[e.loOuter]) * e.outerWeight;
+    const Vec3& here = t->Position[i];
+    const Vec3 inner = t->Position[e.hiInner] - t->Position[e.loInner];
+    const Vec3 outer = t->Position[e.hiOuter] - t->Position[e.loOuter];
+    // Richardson's correction, faded out where the curve is not smooth across the stencil (a
+    // corner: see tangentEstimate()).
+    double keep = e.outerWeight > 0.0 ? 1.0 : 0.0;
+    if (keep > 0.0)
+    {
+      auto turn = [&here](const Vec3& lo, const Vec3& hi)
+      {
+        const Vec3 back = here - lo;
+        const Vec3 ahead = hi - here;
+        return std::atan2(back.cross(ahead).norm(), back.dot(ahead));
+      };
+      const double m = std::fabs(turn(t->Position[e.loOuter], t->Position[e.hiOuter]) -
+                                 2.0 * turn(t->Position[e.loInner], t->Position[e.hiInner]));
+      const double u = std::clamp(
+        (m - kRichardsonFullBelow_rad) / (kRichardsonNoneAbove_rad - kRichardsonFullBelow_rad),
+        0.0,
+        1.0);
+      keep = 1.0 - u * u * (3.0 - 2.0 * u); // smoothstep: the estimate stays continuous
+    }
+    t->TangentEstimate[i] =
+      inner * e.plainWeight +
+      (inner * (e.innerWeight - e.plainWeight) - outer * e.outerWeight) * keep;
     t->PackedX[i] = static_cast<float>(t->Position[i].x);
     t->PackedY[i] = static_cast<float>(t->Position[i].y);
     t->PackedZ[i] = static_cast<float>(t->Position[i].z);

@@ -41,6 +41,17 @@ public:
   ///   D = innerWeight * (P[hiInner] - P[loInner]) - outerWeight * (P[hiOuter] - P[loOuter]),
   /// a Richardson extrapolation of the two central differences (error O(h^4) instead of O(h^2),
   /// which keeps tight bends within 2 %); near free path ends it falls back to one difference.
+  /// The extrapolation assumes a smooth curve. On one, the turn between the backward and forward
+  /// half-chords grows in proportion to the chord (exactly so on a circle): the outer stencil's
+  /// turn is twice the inner one's. Where it is not, a corner lies inside the stencil (a flat
+  /// vessel meeting a steep rise) and the extrapolation overshoots: on the flat side it gave a
+  /// depth change of the wrong sign, on the rise side a projected tangent pointing backwards, i.e.
+  /// a slope force of the wrong sign (+2.5 N for -2.6 N next to an 89 degree rise). So the
+  /// correction is faded out with m = |turn_outer - 2 turn_inner| (full below 2 degrees, none
+  /// above 4): near a corner D is the plain central difference of the inner chord, whose depth
+  /// change has the sign of the path's.
+  static constexpr double kRichardsonFullBelow_rad = 2.0 * 3.14159265358979323846 / 180.0;
+  static constexpr double kRichardsonNoneAbove_rad = 4.0 * 3.14159265358979323846 / 180.0;
   int stencilLow(int g) const { return this->Stencil[g].loInner; }
   int stencilHigh(int g) const { return this->Stencil[g].hiInner; }
   const Vec3& tangentEstimate(int g) const { return this->TangentEstimate[g]; }
@@ -78,6 +89,7 @@ private:
   {
     int loInner = 0, hiInner = 0, loOuter = 0, hiOuter = 0;
     double innerWeight = 0.0, outerWeight = 0.0;
+    double plainWeight = 0.0; // 1 / inner chord length: the central difference alone
   };
   std::vector<StencilEntry> Stencil;
   std::vector<Vec3> TangentEstimate;

@@ -13,6 +13,7 @@ namespace
 constexpr int kMaxNeighbours = 16;
 constexpr double kZeroLength_px = 1e-6;
 constexpr int kLookAhead = 256;
+constexpr double kLeadTurnCos = 0.9961946980917455; // cos 5 degrees (locationToward)
 
 Vec2 unit(const Vec2& v)
 {
@@ -26,6 +27,9 @@ void Tracer::release()
   this->State = InteractionState::Exploring;
   this->Location = {};
   this->Direction = 0;
+  this->Junction = {};
+  this->ArrivedAt = -1;
+  this->ArrivedFrom = -1;
 }
 
 void Tracer::placeAt(const ViewModel& vm, int g)
@@ -34,6 +38,9 @@ void Tracer::placeAt(const ViewModel& vm, int g)
   this->Location = { g, -1, 0.0 };
   this->Direction = 0;
   this->TopologyId = vm.topology().id();
+  this->Junction = {};
+  this->ArrivedAt = -1;
+  this->ArrivedFrom = -1;
 }
 
 bool Tracer::tryContact(const ViewModel& vm, const Vec2& cursor_px)
@@ -130,7 +137,241 @@ double Tracer::advance(const ViewModel& vm, int a, int b, double fromT, double t
   {
     this->Direction = (toT > fromT) ? sign : -sign;
   }
+  // Junction bookkeeping for reconsiderJunction(): leaving a point of more than two neighbours
+  // records the choice made there; reaching a point records where the agent came from.
+  const int left = fromT <= 0.0 && toT > 0.0 ? a : (fromT >= 1.0 && toT < 1.0 ? b : -1);
+  if (left >= 0)
+  {
+    const int toward = left == a ? b : a;
+    const int entry = this->ArrivedAt == left ? this->ArrivedFrom : -1;
+    int nb[kMaxNeighbours];
+    if (toward != entry && topo.neighbours(left, nb, kMaxNeighbours) > 2)
+    {
+      this->Junction = {};
+      this->Junction.point = left;
+      this->Junction.entry = entry;
+      this->Junction.taken = toward;
+    }
+  }
+  if (toT >= 1.0 && fromT < 1.0)
+  {
+    this->ArrivedAt = b;
+    this->ArrivedFrom = a;
+  }
+  else if (toT <= 0.0 && fromT > 0.0)
+  {
+    this->ArrivedAt = a;
+    this->ArrivedFrom = b;
+  }
   return std::fabs(toT - fromT) * (vm.screen_px(b) - vm.screen_px(a)).norm();
+}
+
+Tracer::ChainFit Tracer::fitChain(const ViewModel& vm,
+  int point,
+  int first,
+  double window_px,
+  int* out,
+  int cap) const
+{
+  const SceneTopology& topo = vm.topology();
+  ChainFit fit;
+  out[0] = point;
+  out[1] = first;
+  fit.count = 2;
+  int nb[kMaxNeighbours];
+  const AgentLocation& loc = this->Location;
+  for (int i = 0; i + 1 < fit.count; ++i)
+  {
+    const int p = out[i];
+    const int q = out[i + 1];
+    const double len = (vm.screen_px(q) - vm.screen_px(p)).norm();
+    // The agent on this segment (at a point counts as the end of the segment reaching it).
+    if (fit.agentSegment < 0)
+    {
+      if (loc.t > 0.0 && loc.to >= 0 &&
+          ((loc.from == p && loc.to == q) || (loc.from == q && loc.to == p)))
+      {
+        fit.agentSegment = i;
+        fit.agentFraction = loc.from == p ? loc.t : 1.0 - loc.t;
+      }
+      else if (!(loc.t > 0.0) && loc.from == q)
+      {
+        fit.agentSegment = i;
+        fit.agentFraction = 1.0;
+      }
+      if (fit.agentSegment == i)
+      {
+        fit.agentArc_px = fit.arc_px + fit.agentFraction * len;
+      }
+    }
+    fit.arc_px += len;
+    if (fit.arc_px > window_px || fit.count >= cap)
+    {
+      break;
+    }
+    // On through q: straight along its path, or its one other neighbour; stop at a junction.
+    const int count = topo.neighbours(q, nb, kMaxNeighbours);
+    const int straight = q + (q - p);
+    int next = -1;
+    int others = 0;
+    for (int k = 0; k < count; ++k)
+    {
+      if (nb[k] == p)
+      {
+        continue;
+      }
+      ++others;
+      if (nb[k] == straight && topo.pathOf(nb[k]) == topo.pathOf(q))
+      {
+        next = nb[k];
+      }
+    }
+    if (next < 0 && others == 1)
+    {
+      for (int k = 0; k < count; ++k)
+      {
+        next = nb[k] != p ? nb[k] : next;
+      }
+    }
+    if (next < 0 || next == point)
+    {
+      break;
+    }
+    out[fit.count++] = next;
+  }
+  return fit;
+}
+
+void Tracer::chainAt(const ViewModel& vm,
+  const int* chain,
+  int count,
+  double arc_px,
+  int* segment,
+  double* fraction)
+{
+  double arc = 0.0;
+  for (int i = 0; i + 1 < count; ++i)
+  {
+    const double len = (vm.screen_px(chain[i + 1]) - vm.screen_px(chain[i])).norm();
+    if (arc + len >= arc_px && len > kZeroLength_px)
+    {
+      *segment = i;
+      *fraction = std::clamp((arc_px - arc) / len, 0.0, 1.0);
+      return;
+    }
+    arc += len;
+  }
+  *segment = std::max(0, count - 2);
+  *fraction = 1.0;
+}
+
+double Tracer::reconsiderJunction(const ViewModel& vm, const Vec2& cursor_px)
+{
+  if (this->State != InteractionState::Tracing || this->Junction.point < 0 ||
+      !(this->junctionWindow_px > 0.0) || !cursor_px.isFinite())
+  {
+    return 0.0;
+  }
+  if (!this->Junction.hasCursor)
+  {
+    // The tick the agent passed the junction: the hand's movement is measured from here.
+    this->Junction.hasCursor = true;
+    this->Junction.cursor_px = cursor_px;
+    return 0.0;
+  }
+  const JunctionChoice j = this->Junction;
+  constexpr int kChain = 256;
+  int taken[kChain];
+  int best[kChain];
+  int scratch[kChain];
+  const ChainFit onTaken =
+    this->fitChain(vm, j.point, j.taken, this->junctionWindow_px, taken, kChain);
+  if (onTaken.agentSegment < 0 || onTaken.agentArc_px > this->junctionWindow_px)
+  {
+    this->Junction = {}; // the agent left the branch it took, or is past the window
+    return 0.0;
+  }
+  const Vec2 moved = cursor_px - j.cursor_px;
+  const double reach = moved.norm();
+  if (!(reach > this->junctionMargin_px))
+  {
+    return 0.0; // not enough movement to tell the candidates apart
+  }
+  // Yi & Hayward §3.2.1 on the movement since the junction: its projection on each candidate's
+  // direction (the chord from the junction to where the movement reaches along it), compared by
+  // the perpendicular residual (the same order as the projections: one vector is projected).
+  const Vec2 junction = vm.screen_px(j.point);
+  auto residual = [&vm, &moved, &junction, reach](const int* chain, int count)
+  {
+    int segment = 0;
+    double fraction = 0.0;
+    chainAt(vm, chain, count, reach, &segment, &fraction);
+    const Vec2 at =
+      vm.screen_px(chain[segment]) * (1.0 - fraction) + vm.screen_px(chain[segment + 1]) * fraction;
+    const Vec2 chord = at - junction;
+    const double n = chord.norm();
+    if (!(n > kZeroLength_px))
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+    const double along = moved.dot(chord) / n;
+    return along > 0.0 ? std::sqrt(std::max(0.0, reach * reach - along * along)) : reach - along;
+  };
+  const double takenResidual = residual(taken, onTaken.count);
+  int nb[kMaxNeighbours];
+  const int count = vm.topology().neighbours(j.point, nb, kMaxNeighbours);
+  double bestResidual = takenResidual - this->junctionMargin_px;
+  int bestFirst = -1;
+  int bestCount = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    if (nb[i] == j.entry || nb[i] == j.taken)
+    {
+      continue;
+    }
+    const ChainFit fit =
+      this->fitChain(vm, j.point, nb[i], this->junctionWindow_px, scratch, kChain);
+    const double r = residual(scratch, fit.count);
+    if (r < bestResidual)
+    {
+      bestResidual = r;
+      bestFirst = nb[i];
+      bestCount = fit.count;
+      std::copy(scratch, scratch + fit.count, best);
+    }
+  }
+  if (bestFirst < 0)
+  {
+    return 0.0;
+  }
+  // Back along the branch taken to the junction, then on along the winner as far from the
+  // junction as the agent was (the torsion, arc and direction bookkeeping of advance()).
+  double travelled = this->advance(
+    vm, taken[onTaken.agentSegment], taken[onTaken.agentSegment + 1], onTaken.agentFraction, 0.0);
+  for (int i = onTaken.agentSegment - 1; i >= 0; --i)
+  {
+    travelled += this->advance(vm, taken[i], taken[i + 1], 1.0, 0.0);
+  }
+  int segment = 0;
+  double fraction = 0.0;
+  chainAt(vm, best, bestCount, onTaken.agentArc_px, &segment, &fraction);
+  for (int i = 0; i < segment; ++i)
+  {
+    travelled += this->advance(vm, best[i], best[i + 1], 0.0, 1.0);
+  }
+  const int a = best[segment];
+  const int b = best[segment + 1];
+  if (fraction > 0.0)
+  {
+    travelled += this->advance(vm, a, b, 0.0, fraction);
+  }
+  this->Location = fraction >= 1.0 ? AgentLocation{ b, a, 0.0 }
+                   : fraction > 0.0
+                     ? AgentLocation{ a, b, fraction }
+                     : AgentLocation{ a, segment > 0 ? best[segment - 1] : j.entry, 0.0 };
+  this->Junction = j; // the advance() calls above passed the junction again: keep its record
+  this->Junction.taken = bestFirst;
+  return travelled;
 }
 
 bool Tracer::foldAhead(const ViewModel& vm,
@@ -505,10 +746,145 @@ double Tracer::followMovement(const ViewModel& vm, const Vec2& movement_px)
   return travelled;
 }
 
+AgentLocation Tracer::locationToward(const ViewModel& vm,
+  const Vec2& cursor_px,
+  double reach_px,
+  double* arcOffset_mm) const
+{
+  const AgentLocation& loc = this->Location;
+  double arc = 0.0;
+  const SceneTopology& topo = vm.topology();
+  // Signed 3D arc of a move on edge a -> b from fraction t0 to t1 (advance()'s convention).
+  auto along = [&topo, &arc](int a, int b, double t0, double t1)
+  {
+    const double len3 = (topo.position_World_mm(b) - topo.position_World_mm(a)).norm();
+    arc += (t1 - t0) * len3 * (b > a ? 1.0 : -1.0);
+  };
+  if (arcOffset_mm)
+  {
+    *arcOffset_mm = 0.0;
+  }
+  if (!loc.valid() || !cursor_px.isFinite() || !(reach_px > 0.0))
+  {
+    return loc;
+  }
+  int nb[kMaxNeighbours];
+  // The edge a -> b the location moves along, from fraction t, and the cursor's projection on it.
+  int a = loc.from;
+  int b = -1;
+  double t = 0.0;
+  double proj = 0.0;
+  if (loc.t > 0.0 && loc.to >= 0)
+  {
+    const Vec2 here = vm.screen_px(loc.from) * (1.0 - loc.t) + vm.screen_px(loc.to) * loc.t;
+    proj = (cursor_px - here).dot(this->directionTo(vm, loc.from, loc.to));
+    a = proj >= 0.0 ? loc.from : loc.to;
+    b = proj >= 0.0 ? loc.to : loc.from;
+    t = proj >= 0.0 ? loc.t : 1.0 - loc.t;
+    proj = std::fabs(proj);
+  }
+  else
+  {
+    // At a point: toward the neighbour of largest projection (the tracer's candidates).
+    const Vec2 r = cursor_px - vm.screen_px(loc.from);
+    const int count = topo.neighbours(loc.from, nb, kMaxNeighbours);
+    for (int i = 0; i < count; ++i)
+    {
+      const double p = r.dot(this->directionTo(vm, loc.from, nb[i]));
+      if (p > proj)
+      {
+        proj = p;
+        b = nb[i];
+      }
+    }
+  }
+  double remaining = std::min(proj, reach_px);
+  if (b < 0 || !(remaining > 0.0))
+  {
+    return loc;
+  }
+  // The walk stops before a point whose eta (the stencil's projected tangent, smooth along the
+  // vessel) has turned by more than 5 degrees from the agent's: at a projection cusp (Yi &
+  // Hayward §4.2, Fig. 4) eta turns by up to 180 degrees within a fraction of a pixel, and a
+  // reading that followed a dithering cursor into the turn would swing the force back and forth
+  // while the agent (with its fold hysteresis) stays. On a smooth screen path the dead band's
+  // reach never turns that much.
+  const Vec2 eta0 = vm.eta(loc.from);
+  for (int step = 0; step < kLookAhead; ++step)
+  {
+    const double len = (vm.screen_px(b) - vm.screen_px(a)).norm();
+    if (std::fabs(vm.eta(b).dot(eta0)) < kLeadTurnCos)
+    {
+      if (arcOffset_mm)
+      {
+        *arcOffset_mm = arc;
+      }
+      return { a, b, t };
+    }
+    const double left = (1.0 - t) * len;
+    if (len > kZeroLength_px && left > remaining)
+    {
+      along(a, b, t, t + remaining / len);
+      if (arcOffset_mm)
+      {
+        *arcOffset_mm = arc;
+      }
+      return { a, b, t + remaining / len };
+    }
+    along(a, b, t, 1.0);
+    remaining -= left;
+    // On through b along its path (straight on), or its one other neighbour; stop at a junction
+    // or a path end.
+    const int count = topo.neighbours(b, nb, kMaxNeighbours);
+    const int straight = b + (b - a);
+    int next = -1;
+    int others = 0;
+    for (int i = 0; i < count; ++i)
+    {
+      if (nb[i] == a)
+      {
+        continue;
+      }
+      ++others;
+      if (nb[i] == straight && topo.pathOf(nb[i]) == topo.pathOf(b))
+      {
+        next = nb[i];
+      }
+    }
+    if (next < 0 && others == 1)
+    {
+      for (int i = 0; i < count; ++i)
+      {
+        next = nb[i] != a ? nb[i] : next;
+      }
+    }
+    if (next < 0 || !(remaining > 0.0))
+    {
+      if (arcOffset_mm)
+      {
+        *arcOffset_mm = arc;
+      }
+      return { b, a, 0.0 };
+    }
+    a = b;
+    b = next;
+    t = 0.0;
+  }
+  if (arcOffset_mm)
+  {
+    *arcOffset_mm = arc;
+  }
+  return { a, b, t };
+}
+
 AgentSample Tracer::sample(const ViewModel& vm) const
 {
+  return sampleAt(vm, this->Location);
+}
+
+AgentSample Tracer::sampleAt(const ViewModel& vm, const AgentLocation& loc)
+{
   AgentSample s;
-  const AgentLocation& loc = this->Location;
   const SceneTopology& topo = vm.topology();
   const int a = loc.from;
   const bool onEdge = loc.t > 0.0 && loc.to >= 0;

@@ -99,9 +99,48 @@ public:
   double followMovement(const ViewModel& vm, const Vec2& movement_px);
   /// Threshold of followMovement(): smaller per-tick projections leave the agent still, px.
   double movementThreshold_px = 0.01;
+  /// The branch choice at a junction follows the hand (both rules). Yi & Hayward §3.2.1 project
+  /// each tick's cursor movement on the candidate directions at the junction; for a shallow
+  /// branch the projections differ by less than the hand's tremor (10 degrees: cos 10 = 0.985),
+  /// so the choice made in the tick the agent passes the junction is a guess. While the agent is
+  /// within this screen arc of the last junction it passed, the cursor's movement since that tick
+  /// is projected on every candidate leaving the junction (all but the one the agent came in on;
+  /// each candidate's direction is its chord from the junction to where the movement has reached
+  /// along it); when another candidate beats the one taken, its perpendicular residual smaller
+  /// by junctionMargin_px, the agent goes back through the junction and on along it, as far from
+  /// the junction as it was. Movement, not position, decides (as in the paper): a hand that runs
+  /// alongside the parent a few pixels off it does not fall into a shallow branch on that side.
+  /// 0 disables (the choice at the junction is final). Default 24 px.
+  double junctionWindow_px = 24.0;
+  /// How much smaller the other candidate's residual must be to re-route, px (a hysteresis
+  /// against the hand's tremor). Default 1 px.
+  double junctionMargin_px = 1.0;
+  /// The last junction passed and the branch taken there (-1 when none is within the window).
+  int lastJunction() const { return this->Junction.point; }
+  /// Re-routes the agent when the cursor follows another candidate of the last junction (see
+  /// junctionWindow_px). follow() and followMovement() call it; returns the screen arc travelled.
+  double reconsiderJunction(const ViewModel& vm, const Vec2& cursor_px);
 
   /// Interpolated quantities at the agent. Requires a valid location.
   AgentSample sample(const ViewModel& vm) const;
+  /// Where the cursor projects on the vessel, within `reach_px` of screen arc of the agent: the
+  /// agent's location moved along the path (straight on through points, never into a branch) by
+  /// the cursor offset's projection on the local screen tangent, clamped to `reach_px`. With
+  /// reach_px = deadBand_px this is the agent without the dead band's backlash: the offset rule's
+  /// agent trails the cursor's projection by the dead band once moving and stays still within
+  /// it, so the agent is a hysteretic function of the hand, while this location is a function of
+  /// the cursor alone. The slope laws sample dz, dl and eta here (HapticPipeline): a force field
+  /// read through a lag that reverses with the hand's direction does net work on the hand every
+  /// back-and-forth cycle (a negative Coulomb friction of 2 x dead band x the field's gradient)
+  /// and sustains a limit cycle against a soft grip where the field is steep. Requires a valid
+  /// location. `arcOffset_mm` (optional): the signed 3D arc from the agent to it (+ toward
+  /// increasing index, as arcLength_mm()).
+  AgentLocation locationToward(const ViewModel& vm,
+    const Vec2& cursor_px,
+    double reach_px,
+    double* arcOffset_mm = nullptr) const;
+  /// Interpolated quantities at a location on the graph (as sample() at the agent).
+  static AgentSample sampleAt(const ViewModel& vm, const AgentLocation& location);
 
 private:
   Vec2 directionTo(const ViewModel& vm, int a, int m) const;
@@ -117,6 +156,38 @@ private:
     int* behindOut) const;
   /// Moves the agent forward along the chain to `point` (found by foldAhead()).
   double crossFold(const ViewModel& vm, int point, int behind);
+
+  /// A chain of points leaving junction `point` through `first` (straight on, up to `window_px` of
+  /// screen arc, stopping at another junction or a path end), written to `out` (capacity `cap`):
+  /// its length and screen arc, and the agent's segment on it (-1 when the agent is not on it).
+  struct ChainFit
+  {
+    int count = 0;
+    double arc_px = 0.0;
+    int agentSegment = -1;
+    double agentFraction = 0.0;
+    double agentArc_px = 0.0;
+  };
+  ChainFit fitChain(const ViewModel& vm, int point, int first, double window_px, int* out, int cap)
+    const;
+  /// Where screen arc `arc_px` falls on a chain: segment index and fraction.
+  static void chainAt(const ViewModel& vm,
+    const int* chain,
+    int count,
+    double arc_px,
+    int* segment,
+    double* fraction);
+  struct JunctionChoice
+  {
+    int point = -1; ///< the junction (a point with more than two neighbours)
+    int entry = -1; ///< the neighbour the agent came in from (-1 unknown)
+    int taken = -1; ///< the neighbour it left through
+    bool hasCursor = false;
+    Vec2 cursor_px; ///< the cursor in the tick the agent passed it
+  };
+  JunctionChoice Junction;
+  int ArrivedAt = -1;   ///< the last point the agent reached...
+  int ArrivedFrom = -1; ///< ...and the neighbour it came from
 
   InteractionState State = InteractionState::Exploring;
   AgentLocation Location;

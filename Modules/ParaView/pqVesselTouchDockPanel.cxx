@@ -17,6 +17,7 @@
 #include "qVesselTouchHapticZoomWidget.h"
 #include "qVesselTouchInfoWidget.h"
 #include "qVesselTouchLoopStatsWidget.h"
+#include "qVesselTouchHapticParameterForm.h"
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
@@ -58,6 +59,29 @@ namespace
 constexpr int kStatusPeriod_ms = 100;
 /// The panel's width when it first shows, pixels.
 constexpr int kPanelWidth_px = 450;
+/// The Advanced section's haptic parameters (issue 17's tick options): rows built from the
+/// parameter table (label, unit, range, meaning), the force-law widget edits the laws' own.
+const char* const kAdvancedParameters[] = { "TracerRule",
+  "TracerMovementThreshold",
+  "TracerJunctionWindow",
+  "TracerJunctionMargin",
+  "ContactDwell",
+  "ContactApproachAtStart",
+  "SlopeForceBudget",
+  "ForceInterpolationPerAxis",
+  "MaxForceRate",
+  "ChangeOfHeightZMaxPerResolution",
+  "ProxyTangentSnap",
+  "ProxyNormalUnilateral",
+  "ProxyThresholdFromData",
+  "ProxyFriction",
+  "ProxyTickSpacing",
+  "ProxyTickForce",
+  "ProxyTickAtBifurcations",
+  "ProxyFieldForce",
+  "IdleRadius",
+  "IdleDwell",
+  "IdleRamp" };
 
 /// The "Help & Acknowledgement" section: the workflow in a few lines and the papers VesselTouch
 /// implements.
@@ -106,6 +130,8 @@ public:
     haptic.zoneZeroBelow = this->Ui.zonesWidget->zeroBelow();
     haptic.zoneSaturateAbove = this->Ui.zonesWidget->saturateAbove();
     v.deviceId = this->Ui.deviceWidget->currentDeviceId();
+    // The Advanced section's rows (the tick's options of issue 17).
+    this->Ui.tickOptionsWidget->writeTo(haptic);
     return v;
   }
 
@@ -122,6 +148,7 @@ public:
     this->Ui.zonesWidget->setThresholds(v.law.haptic.zoneZeroBelow, v.law.haptic.zoneSaturateAbove);
     this->Ui.zonesWidget->setGain_N(v.activeGain_N(zoneGain_N));
     this->Ui.deviceWidget->setCurrentDeviceId(v.deviceId);
+    this->Ui.tickOptionsWidget->setParameters(v.law.haptic);
     this->Syncing = false;
   }
 
@@ -199,6 +226,13 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
   in.StatusTimer.setInterval(kStatusPeriod_ms);
   QObject::connect(
     &in.StatusTimer, &QTimer::timeout, this, &pqVesselTouchDockPanel::updateSessionStatus);
+
+  QStringList advanced;
+  for (const char* name : kAdvancedParameters)
+  {
+    advanced << QString::fromLatin1(name);
+  }
+  in.Ui.tickOptionsWidget->setParameterNames(advanced);
 
   this->setUpDevices();
   pqVesselTouchPanelValues saved;
@@ -322,6 +356,10 @@ void pqVesselTouchDockPanel::connectWidgets()
     &pqVesselTouchDockPanel::onWidgetsEdited);
   QObject::connect(in.Ui.deviceWidget,
     &qVesselTouchDeviceWidget::deviceSelected,
+    this,
+    &pqVesselTouchDockPanel::onWidgetsEdited);
+  QObject::connect(in.Ui.tickOptionsWidget,
+    &qVesselTouchHapticParameterForm::parametersChanged,
     this,
     &pqVesselTouchDockPanel::onWidgetsEdited);
 

@@ -12,6 +12,7 @@
 #include "qVesselTouchForceZonesWidget.h"
 #include "qVesselTouchHapticZoomWidget.h"
 #include "qVesselTouchLoopStatsWidget.h"
+#include "qVesselTouchHapticParameterForm.h"
 
 #include "pqActiveObjects.h"
 #include "pqCoreUtilities.h"
@@ -142,6 +143,16 @@ void pqVesselTouchPanelSelfTest::setWidgets()
   panel.forceLawWidget()->setParameters(law);
   panel.zoomWidget()->setRatio(2.5);
   panel.zonesWidget()->setThresholds(0.1, 0.6);
+  // The Advanced section's tick options (issue 17).
+  if (auto* tick = panel.findChild<qVesselTouchHapticParameterForm*>("tickOptionsWidget"))
+  {
+    vtouch::HapticParameters options = tick->parameters();
+    options.tracerJunctionWindow_px = 12.0;
+    options.proxyTickSpacing_mm = 2.0;
+    options.proxyTangentSnap = true;
+    options.idleDwell_s = 3.0;
+    tick->setParameters(options);
+  }
   this->Report.insert("zones_gain_N", panel.zonesWidget()->gain_N());
   QTimer::singleShot(kSettleTime_ms, this, &pqVesselTouchPanelSelfTest::pickAndExtract);
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -33,11 +34,13 @@ TracerMeasure traceRoute(const ViewModel& vm,
   const std::vector<int>& route,
   int rule,
   double dither_px,
-  unsigned seed)
+  unsigned seed,
+  double junctionWindow_px = HapticParameters{}.tracerJunctionWindow_px)
 {
   HapticPipeline pipeline;
   HapticParameters p = immediateContact();
   p.tracerRule = rule;
+  p.tracerJunctionWindow_px = junctionWindow_px;
   DeviceCapabilities caps;
   caps.maxContinuousForce_N = 3.0; // the simulated stylus's range (lambda is sized from it)
   TickInput in;
@@ -254,27 +257,62 @@ void printTracerComparison()
       std::printf(",\n  \"tracer.%s.%s.max_force_step_n\": %.6g", key, name, m.maxForceStep_N);
       std::printf(",\n  \"tracer.%s.%s.reached_fraction\": %.6g", key, name, m.reached);
     }
+    // Branch choices against the branch's angle: the hand comes along the parent to the junction
+    // and then follows the branch (it should be taken) or goes on along the parent (it should
+    // not), five dither seeds each; with the junction re-decision (default) and without it (the
+    // choice made at the junction is final).
+    const double angles[] = { 10.0, 20.0, 30.0, 45.0, 60.0, 90.0 };
+    const unsigned seeds[] = { 1u, 2u, 3u, 4u, 5u };
     int correct = 0;
     int runs = 0;
-    for (double angle : { 10.0, 20.0, 45.0, 90.0 })
+    std::printf(",\n  \"tracer.%s.branch.angles_deg\": [10, 20, 30, 45, 60, 90]", key);
+    for (const bool reconsider : { true, false })
     {
-      const auto view = buildView(branchScene(angle), topCamera({ 0, 0, 0 }, 0.25));
-      std::vector<int> route;
-      for (int g = 20; g <= 80; ++g) // along the parent to the junction
+      const char* variant = reconsider ? "branch" : "branch_at_junction";
+      for (double angle : angles)
       {
-        route.push_back(g);
-      }
-      const int branchBegin = view->topology().pathBegin(1);
-      const int branchEnd = view->topology().pathEnd(1);
-      for (int g = branchBegin + 1; g < branchEnd; ++g) // then along the branch
-      {
-        route.push_back(g);
-      }
-      for (unsigned seed : { 1u, 2u, 3u })
-      {
-        const TracerMeasure m = traceRoute(*view, route, rule, 0.3, seed);
-        correct += m.lastPath == 1 ? 1 : 0;
-        ++runs;
+        const auto view = buildView(branchScene(angle), topCamera({ 0, 0, 0 }, 0.25));
+        std::vector<int> toBranch;
+        std::vector<int> onParent;
+        for (int g = 20; g <= 80; ++g) // along the parent to the junction
+        {
+          toBranch.push_back(g);
+          onParent.push_back(g);
+        }
+        const int branchBegin = view->topology().pathBegin(1);
+        const int branchEnd = view->topology().pathEnd(1);
+        for (int g = branchBegin + 1; g < branchEnd; ++g) // then along the branch
+        {
+          toBranch.push_back(g);
+        }
+        for (int g = 81; g <= 140; ++g) // or on along the parent
+        {
+          onParent.push_back(g);
+        }
+        int taken = 0;
+        int kept = 0;
+        for (unsigned seed : seeds)
+        {
+          const double window = reconsider ? HapticParameters{}.tracerJunctionWindow_px : 0.0;
+          taken += traceRoute(*view, toBranch, rule, 0.3, seed, window).lastPath == 1 ? 1 : 0;
+          kept += traceRoute(*view, onParent, rule, 0.3, seed, window).lastPath == 0 ? 1 : 0;
+        }
+        const int n = static_cast<int>(std::size(seeds));
+        std::printf(",\n  \"tracer.%s.%s.angle%d.taken\": %.6g",
+          key,
+          variant,
+          static_cast<int>(angle),
+          static_cast<double>(taken) / n);
+        std::printf(",\n  \"tracer.%s.%s.angle%d.kept\": %.6g",
+          key,
+          variant,
+          static_cast<int>(angle),
+          static_cast<double>(kept) / n);
+        if (reconsider)
+        {
+          correct += taken + kept;
+          runs += 2 * n;
+        }
       }
     }
     std::printf(

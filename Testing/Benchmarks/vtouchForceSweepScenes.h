@@ -8,8 +8,15 @@
 //   tracer.<rule>.<scene>.max_force_step_n   largest per-tick change of the LDGF target force
 //       (the force steps at the spiral's projection cusps)
 //   tracer.<rule>.<scene>.reached_fraction   last point reached / path length
-//   tracer.<rule>.branch.correct_fraction    a hand turning into a branch (10-90 degrees off the
-//       parent, three dither seeds): fraction of runs that end on the branch
+//   tracer.<rule>.branch.angle<deg>.taken    the hand comes along the parent and turns into a
+//       branch <deg> degrees off it (10, 20, 30, 45, 60, 90; five dither seeds): fraction of runs
+//       that end on the branch
+//   tracer.<rule>.branch.angle<deg>.kept     the hand goes on along the parent past the same
+//       junction: fraction of runs that end on the parent
+//   tracer.<rule>.branch_at_junction.angle<deg>.{taken,kept}  the same with the junction
+//       re-decision off (tracerJunctionWindow_px = 0: the choice made at the junction is final)
+//   tracer.<rule>.branch.angles_deg          the angles (list, for the chart)
+//   tracer.<rule>.branch.correct_fraction    taken and kept over every angle and seed
 // with <rule> offset (default) or movement (the paper's rule).
 //
 // Hayward & Yi's surface stimulus (their eqs. 4-7): z(x, y) = tan(alpha) x + A sin(omega x) y on

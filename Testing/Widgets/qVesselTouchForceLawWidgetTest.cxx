@@ -137,8 +137,9 @@ private slots:
     QVERIFY(qVesselTouchForceLawWidget::presetParameters(
       qVesselTouchForceLawWidget::ChangeOfHeight, QStringLiteral("Gentle"), gentle));
     QVERIFY(w.parameters() == gentle);
-    QCOMPARE(w.parameters().haptic.cohZMax_mm, 2.0);
-    QCOMPARE(child<QDoubleSpinBox>(w, "cohZMaxSpinBox")->value(), 2.0);
+    // z_max is the device's (Hayward & Yi App. A), in every preset.
+    QCOMPARE(w.parameters().haptic.cohZMax_mm, 0.0);
+    QCOMPARE(child<QDoubleSpinBox>(w, "cohZMaxSpinBox")->text(), QStringLiteral("from the device"));
   }
 
   void editingAParameterEmitsAndLeavesThePreset()

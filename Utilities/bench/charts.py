@@ -10,7 +10,7 @@ Charts (each captioned with the machine, the commit and quick/full mode):
   force_error_vs_rate.png          force error against loop rate per force law, helix and spiral
   force_error_vs_tick_cost.png     force error at 1 kHz against the tick's median cost
   tracer_rules.png                 the two tracing rules: tracking error, force steps at the
-                                   spiral's cusps, branch choices
+                                   spiral's cusps, branch choices against the branch angle
   surface_stimulus.png             Hayward & Yi's surface (eqs. 4-7): change of height against
                                    the lateral gradient along the traced line
   loop_period_error.png            period-error histograms at 1, 2, 5, 10 kHz, with and without
@@ -191,13 +191,14 @@ def chart_force(out, results):
 
 
 def chart_tracer(out, results):
-    """The two tracing rules (Yi & Hayward 3.2.1): tracking error, force steps, branch choices."""
+    """The two tracing rules (Yi & Hayward 3.2.1): tracking error, force steps, and the branch
+    choice against the branch's angle, with the junction re-decision (default) and without it."""
     raw = load(out, "force")
     if not raw or "tracer.offset.helix.mean_error_px" not in raw:
         return
     rules = (("offset", "offset (default)"), ("movement", "movement (paper)"))
     scenes = ("helix", "spiral")
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4.5))
+    fig, axes = plt.subplots(1, 4, figsize=(18, 4.5))
     width = 0.38
     x = np.arange(len(scenes))
     for i, (rule, label) in enumerate(rules):
@@ -207,21 +208,28 @@ def chart_tracer(out, results):
         axes[0].bar(x + (i - 0.5) * width, mean, width, label=label + " mean")
         axes[0].plot(x + (i - 0.5) * width, peak, "k^", ms=7)
         axes[1].bar(x + (i - 0.5) * width, step, width, label=label)
-        axes[2].bar(i, raw.get("tracer.%s.branch.correct_fraction" % rule, np.nan), 0.6,
-                    label=label)
+        angles = raw.get("tracer.%s.branch.angles_deg" % rule) or []
+        for variant, style, suffix in (("branch", "-o", ""),
+                                       ("branch_at_junction", ":x", ", choice at junction final")):
+            for ax, what in ((axes[2], "taken"), (axes[3], "kept")):
+                ys = [raw.get("tracer.%s.%s.angle%d.%s" % (rule, variant, a, what), np.nan)
+                      for a in angles]
+                ax.plot(angles, ys, style, color="C%d" % i, label=label + suffix)
     axes[0].set_yscale("log")
     axes[0].set_title("tracking error (bars mean, triangles max), px", fontsize=10)
     axes[1].set_title("largest per-tick LDGF target step, N", fontsize=10)
-    axes[2].set_title("branch taken (10-90 deg, 3 seeds), fraction", fontsize=10)
+    axes[2].set_title("hand follows the branch: fraction ending on it", fontsize=10)
+    axes[3].set_title("hand follows the parent: fraction ending on it", fontsize=10)
     for ax in axes[:2]:
         ax.set_xticks(x)
         ax.set_xticklabels(["helix (side)", "spiral 3 deg off edge-on"])
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3, axis="y")
-    axes[2].set_xticks([0, 1])
-    axes[2].set_xticklabels([r[1] for r in rules])
-    axes[2].set_ylim(0, 1.05)
-    axes[2].grid(alpha=0.3, axis="y")
+    for ax in axes[2:]:
+        ax.set_xlabel("branch angle to the parent, degrees (5 dither seeds)")
+        ax.set_ylim(-0.05, 1.05)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
     save(fig, out, "tracer_rules.png", results)
 
 

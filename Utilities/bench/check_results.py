@@ -29,6 +29,9 @@ REQUIRED = (
        for scene in ("helix", "spiral")
        for what in ("mean_error_px", "max_error_px", "max_force_step_n", "reached_fraction")]
     + ["tracer.%s.branch.correct_fraction" % rule for rule in ("offset", "movement")]
+    + ["tracer.%s.%s.angle%d.%s" % (rule, variant, angle, what)
+       for rule in ("offset", "movement") for variant in ("branch", "branch_at_junction")
+       for angle in (10, 20, 30, 45, 60, 90) for what in ("taken", "kept")]
     + ["surface.%s.%s" % (law, what) for law in ("change_of_height", "lateral_gradient")
        for what in ("patch0.mean_fx_n", "patch1.mean_fx_n", "patch2.mean_fx_n", "rms_fy_n")]
     + ["stability.%s.1000hz.max_stable" % m

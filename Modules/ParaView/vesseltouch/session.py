@@ -52,6 +52,11 @@ _LOG_COLUMNS = {"Time": "time", "Hand": "hand", "Cursor": "cursor", "State": "st
                 "TargetForce": "target_force", "Force": "force"}
 
 
+def _given(**values):
+    """The keyword arguments that were given (not None)."""
+    return {name: v for name, v in values.items() if v is not None}
+
+
 def _first(value):
     """An information property's single value (servermanager gives a scalar or a list)."""
     return value[0] if isinstance(value, (list, tuple)) else value
@@ -302,13 +307,14 @@ class HapticSession(HapticParameterAccess):
 
     # --- force -----------------------------------------------------------------------------
     def SetForceLaw(self, law, k=None, lambda_mm=None, z_max_mm=None, probe_px=None, k_c=None,
-                    b_c=None, tau_t=None, snap_N=None, tangent_drag=None, snap_drag=None):
+                    b_c=None, tau_t=None, snap_N=None, tangent_drag=None, snap_drag=None,
+                    z_max_counts=None):
         """'LDGF', 'ChangeOfHeight', 'LateralGradient', 'ConstraintProxy' or 'None' (the labels
         of the ForceLaw property's choices, or the short names of FORCE_LAW_ALIASES), with the
         law's parameters: ``k`` (N, the force-zone gain k(P) in the saturation zone),
         ``lambda_mm`` (LDGF / change of height), ``z_max_mm`` (change of height, Hayward & Yi
-        eq. 8; 0 = from the device's resolution), ``probe_px`` (lateral gradient), ``k_c``
-        (N/m), ``b_c`` (N s/m), ``tau_t``, ``snap_N`` (N), ``tangent_drag``, ``snap_drag``
+        eq. 8; 0 = ``z_max_counts`` counts of the device's resolution), ``probe_px`` (lateral
+        gradient), ``k_c`` (N/m), ``b_c`` (N s/m), ``tau_t``, ``snap_N`` (N), ``tangent_drag``, ``snap_drag``
         (constraint proxy). Switching is crossfaded (no force jump). Every other haptic
         parameter: SetHapticParameters(); defaults, ranges and meanings:
         DescribeHapticParameters()."""
@@ -323,8 +329,9 @@ class HapticSession(HapticParameterAccess):
             props["ZoneGain"] = k
         if lambda_mm is not None:
             props["ChangeOfHeightLambda" if value == 1 else "LdgfLambda"] = lambda_mm
-        optional = (("ChangeOfHeightZMax", z_max_mm), ("LateralProbe", probe_px),
-                    ("ProxyStiffness", k_c), ("ProxyDamping", b_c),
+        optional = (("ChangeOfHeightZMax", z_max_mm),
+                    ("ChangeOfHeightZMaxPerResolution", z_max_counts),
+                    ("LateralProbe", probe_px), ("ProxyStiffness", k_c), ("ProxyDamping", b_c),
                     ("ProxyTangentThreshold", tau_t), ("ProxySnapThreshold", snap_N))
         for name, v in optional:
             if v is not None:
@@ -347,14 +354,68 @@ class HapticSession(HapticParameterAccess):
             props["ContactApproachAtStart"] = 1 if approach_at_start else 0
         self._set(**props)
 
-    def SetTracerRule(self, rule):
-        """'offset' or 'movement' (Yi & Hayward section 3.2.1 as written): the labels of the
-        TracerRule property's choices."""
-        rules = self._choices("TracerRule")
-        key = _key(rule)
-        if key not in rules:
-            raise ValueError("unknown tracer rule %r (one of %s)" % (rule, ", ".join(rules)))
-        self._set(TracerRule=rules[key])
+    def SetTracerRule(self, rule=None, movement_threshold_px=None, junction_window_px=None,
+                      junction_margin_px=None):
+        """``rule``: 'offset' or 'movement' (Yi & Hayward section 3.2.1 as written: the labels of
+        the TracerRule property's choices); ``movement_threshold_px``: the movement rule's
+        threshold; ``junction_window_px`` / ``junction_margin_px``: within that screen arc of the
+        last junction the branch choice follows the hand's movement since the junction,
+        re-routing when another branch's residual is smaller by the margin (a window of 0 makes
+        the choice at the junction final). Defaults and ranges: DescribeHapticParameters()."""
+        props = _given(TracerMovementThreshold=movement_threshold_px,
+                       TracerJunctionWindow=junction_window_px,
+                       TracerJunctionMargin=junction_margin_px)
+        if rule is not None:
+            rules = self._choices("TracerRule")
+            key = _key(rule)
+            if key not in rules:
+                raise ValueError("unknown tracer rule %r (one of %s)" % (rule, ", ".join(rules)))
+            props["TracerRule"] = rules[key]
+        self.SetHapticParameters(**props)
+
+    def SetForceSmoothing(self, max_rate_N_per_s=None, per_axis=None, slope_force_budget=None):
+        """Yi & Hayward section 4.2: force steps spread over several ticks, at most
+        ``max_rate_N_per_s`` (a Euclidean bound on the increment, or with ``per_axis`` Fig. 5 as
+        printed: a per-axis threshold and n equal steps). Section 4.1: ``slope_force_budget``,
+        the fraction of the device's force limit the slope laws may reach where a vessel runs
+        along the view direction (0 keeps lambda as set)."""
+        self.SetHapticParameters(**_given(MaxForceRate=max_rate_N_per_s,
+                                          ForceInterpolationPerAxis=per_axis,
+                                          SlopeForceBudget=slope_force_budget))
+
+    _TANGENT_RULES = {"free": (0, 0), "drag": (1, 0), "snap": (0, 1)}
+    _NORMAL_RULES = {"rigid": (0, 0), "unilateral": (0, 1), "popover": (1, 0)}
+
+    def SetConstraintProxy(self, tangent_rule=None, normal_rule=None, threshold_from_data=None,
+                           friction=None, tick_spacing_mm=None, tick_force_N=None,
+                           tick_at_bifurcations=None, field_force=None, kappa_low=None,
+                           kappa_high=None):
+        """The constraint proxy's rules (Ikits et al.): ``tangent_rule`` 'free' (eq. 9), 'drag'
+        (eq. 8) or 'snap' (eq. 11); ``normal_rule`` 'rigid', 'unilateral' (eq. 10) or 'popover';
+        ``threshold_from_data`` (eq. 16), ``friction``, tick marks every ``tick_spacing_mm`` (0:
+        none) of ``tick_force_N`` and ``tick_at_bifurcations``, ``field_force`` (Yi & Hayward eq.
+        2 along the vessel), ``kappa_low`` / ``kappa_high`` (eq. 12's knees). The Proxy* haptic
+        parameters: DescribeHapticParameters() gives their defaults, ranges and meanings."""
+        props = _given(ProxyThresholdFromData=threshold_from_data, ProxyFriction=friction,
+                       ProxyTickSpacing=tick_spacing_mm, ProxyTickForce=tick_force_N,
+                       ProxyTickAtBifurcations=tick_at_bifurcations, ProxyFieldForce=field_force,
+                       ProxyKappaLow=kappa_low, ProxyKappaHigh=kappa_high)
+        for rule, rules, names in ((tangent_rule, self._TANGENT_RULES,
+                                    ("ProxyTangentDrag", "ProxyTangentSnap")),
+                                   (normal_rule, self._NORMAL_RULES,
+                                    ("ProxySnapDrag", "ProxyNormalUnilateral"))):
+            if rule is not None:
+                if _key(rule) not in rules:
+                    raise ValueError("unknown rule %r (one of %s)" % (rule, ", ".join(rules)))
+                props.update(zip(names, rules[_key(rule)]))
+        self.SetHapticParameters(**props)
+
+    def SetIdleGate(self, radius_mm=None, dwell_s=None, ramp_s=None):
+        """The zero-force zone of devices without pressure (Yi & Hayward section 5.2): a handle
+        resting within ``radius_mm`` for ``dwell_s`` (0: never) is silenced over ``ramp_s``;
+        moving out of the radius restores the force."""
+        self.SetHapticParameters(**_given(IdleRadius=radius_mm, IdleDwell=dwell_s,
+                                          IdleRamp=ramp_s))
 
     def SetZoom(self, r):
         """Haptic zoom r = cursor movement / hand movement (a value out of the Zoom parameter's

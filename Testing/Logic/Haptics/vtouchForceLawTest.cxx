@@ -239,6 +239,58 @@ TEST(ChangeOfHeightForceLaw, ReversingHandPassesThroughZeroWithoutFlip)
   EXPECT_LE(worstStep, ldgf.norm() * 0.001 / 0.01 + 1e-12);
 }
 
+TEST(ChangeOfHeightForceLaw, ReversalIsNoStifferThanTheDeviceRendersStably)
+{
+  // Within a reversal |f| = k |s| |P - W| / z_max: a spring anchored at W. With the device's
+  // largest stable stiffness K_max (1000 N/m at 1 kHz, as the simulated stylus) z_max is at least
+  // k |s| / K_max, so the force never changes faster than K_max per unit of hand travel; with the
+  // paper's z_max alone (two 5 um counts) the same reversal is k |s| / 10 um = 50 kN/m here. A hand
+  // moving on while the slope steepens keeps |mu| = 1 (z_max grows, mu does not collapse).
+  for (bool bounded : { true, false })
+  {
+    CohRig rig;
+    rig.caps.maxStiffness_N_per_m = 1000.0;
+    rig.law.boundReversalStiffness = bounded;
+    const double f0 = rig.ldgf().norm();
+    for (int k = 0; k < 2000; ++k) // 2 mm along +x, 1 um per tick
+    {
+      rig.move({ 0.001, 0.0 });
+    }
+    EXPECT_NEAR(rig.law.mu().x, 1.0, 1e-12);
+    Vec2 previous = rig.move({});
+    double stiffest_N_per_mm = 0.0;
+    for (int k = 0; k < 2000; ++k) // and back
+    {
+      const Vec2 f = rig.move({ -0.001, 0.0 });
+      stiffest_N_per_mm = std::max(stiffest_N_per_mm, (f - previous).norm() / 0.001);
+      ASSERT_LE(f.x, 1e-15) << k; // no flip
+      previous = f;
+    }
+    EXPECT_NEAR((previous - rig.ldgf()).norm(), 0.0, 1e-12);
+    if (bounded)
+    {
+      EXPECT_LE(stiffest_N_per_mm, 1.0 + 1e-9); // K_max = 1 N/mm
+      EXPECT_NEAR(
+        rig.law.zMaxFor(&rig.caps), 0.01, 1e-15); // the resolution's z_max stays the floor
+    }
+    else
+    {
+      EXPECT_NEAR(stiffest_N_per_mm, f0 / 0.01, 1e-6 * f0 / 0.01); // k |s| / z_max
+    }
+  }
+  // The slope doubles under a moving hand: mu stays at 1, the force doubles.
+  CohRig rig;
+  rig.caps.maxStiffness_N_per_m = 1000.0;
+  for (int k = 0; k < 2000; ++k)
+  {
+    rig.move({ 0.001, 0.0 });
+  }
+  rig.in.agent.dz_mm *= 2.0;
+  const Vec2 f = rig.move({ 0.001, 0.0 });
+  EXPECT_NEAR(rig.law.mu().x, 1.0, 1e-12);
+  EXPECT_NEAR((f - rig.ldgf()).norm(), 0.0, 1e-12);
+}
+
 TEST(ChangeOfHeightForceLaw, SensorNoiseBelowZMaxNeverFlipsMu)
 {
   // A hand that moved along +x rests on a sensor with white noise, sigma = z_max / 10 (the

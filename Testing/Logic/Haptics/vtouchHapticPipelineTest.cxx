@@ -245,8 +245,9 @@ TEST(HapticPipeline, ProxyTickMarksABifurcationWhereTheBranchJoins)
 {
   // Ikits' tick-mark texture at a bifurcation: a branch joins the traced vessel at x = 0 (point
   // 160). Sliding the hand along the vessel from x = -5 to +5 mm, the free proxy's tangent force is
-  // the detent centred on the junction (drawn in from both sides, peak A at +-w, nothing 2 mm
-  // away), and with the option off there is no tangent force at all.
+  // the detent centred on the junction, a function of the hand's position (drawn in from both
+  // sides, peak A at +-w, nothing 2 mm away), and with the option off there is no tangent force at
+  // all.
   for (const bool marks : { true, false })
   {
     QSkeleton s = straightLine({ -40, 0, 0 }, { 40, 0, 0 }, 0.25);
@@ -275,7 +276,10 @@ TEST(HapticPipeline, ProxyTickMarksABifurcationWhereTheBranchJoins)
       rig.device.position_Device_mm.x = -5.0 + 0.01 * k;
       const AgentState a = rig.step();
       ASSERT_EQ(a.path, 0) << k;
-      const double u = a.position_World_mm.x; // arc from the junction along increasing index
+      // Arc from the junction along increasing index where the detent is read: the cursor's
+      // projection on the vessel (the hand, 1:1 here), not the agent, which the dead band makes
+      // lag the hand (Tracer::locationToward).
+      const double u = rig.device.position_Device_mm.x;
       const double f = a.force_N.x;
       if (std::fabs(u) > 2.0)
         far = std::max(far, std::fabs(f));

@@ -57,6 +57,52 @@ TEST(ViewModelBuilder, SlopeEqualsTanBetaOnInclinedLine)
   EXPECT_NEAR(vm->depth_mm(mid) + 10.0, 1000.0, 0.3);
 }
 
+TEST(ViewModelBuilder, SlopeStencilKeepsTheSignOfTheDepthChangeAcrossACorner)
+{
+  // A flat vessel along +x meets a rise toward the viewer at `deg` degrees to the screen plane,
+  // then goes on flat (0.25 mm sampling, 1 mm stencil). Around both corners every point's depth
+  // change dz along increasing index is <= 0 and its projected tangent points along +x: the
+  // Richardson extrapolation overshot there before (dz > 0 on the flat side, eta along -x on the
+  // rise side: a slope force of the wrong sign), and is faded out where the chords disagree.
+  // Away from the corners the slope is exact (0 on the flats, tan(deg) on the rise).
+  for (double deg : { 30.0, 60.0, 89.0 })
+  {
+    const double beta = deg * kPi / 180.0;
+    const Vec3 up{ std::cos(beta), 0.0, std::sin(beta) };
+    QSkeleton s;
+    SkeletonPath path;
+    auto add = [&path](const Vec3& p, const Vec3& t)
+    {
+      SkeletonPoint q;
+      q.position_World_mm = p;
+      q.tangent_World = t;
+      path.points.push_back(q);
+    };
+    for (int i = -20; i < 0; ++i)
+    {
+      add({ 0.25 * i, 0, 0 }, { 1, 0, 0 });
+    }
+    for (int i = 0; i < 40; ++i)
+    {
+      add(up * (0.25 * i), up);
+    }
+    for (int i = 0; i <= 20; ++i)
+    {
+      add(up * 10.0 + Vec3{ 0.25 * i, 0, 0 }, { 1, 0, 0 });
+    }
+    s.paths.push_back(path);
+    auto vm = buildView(s, topCamera({ 0, 0, 0 }));
+    for (int g = 0; g < vm->pointCount(); ++g)
+    {
+      EXPECT_LE(vm->dz_mm(g), 1e-12) << deg << " point " << g;
+      EXPECT_GT(vm->eta(g).x, 0.99) << deg << " point " << g;
+    }
+    EXPECT_NEAR(vm->dz_mm(10), 0.0, 1e-12);                            // the first flat
+    EXPECT_NEAR(-vm->dz_mm(40) / vm->dl_mm(40), std::tan(beta), 1e-6); // the rise
+    EXPECT_NEAR(vm->dz_mm(70), 0.0, 1e-12);                            // the second flat
+  }
+}
+
 TEST(ViewModelBuilder, ContactMapMatchesBruteForceNearestSplat)
 {
   std::mt19937 rng(12345);

@@ -88,7 +88,10 @@ check("error" not in report, "self-test error: %r" % report.get("error"))
 values = report.get("values_after_widgets", {})
 check(values.get("registration_name") == "VesselTouchSession", "the shared session is bound")
 expected = {"ForceLaw": 1, "ChangeOfHeightLambda": 0.02, "ZoneGain": 0.7, "Zoom": 2.5,
-            "ZoneZeroBelow": 0.1, "ZoneSaturateAbove": 0.6, "DeviceType": 0}
+            "ZoneZeroBelow": 0.1, "ZoneSaturateAbove": 0.6, "DeviceType": 0,
+            # the Advanced section's tick options, down to the haptic pipeline (issue 17)
+            "TracerJunctionWindow": 12.0, "ProxyTickSpacing": 2.0, "ProxyTangentSnap": 1,
+            "IdleDwell": 3.0}
 for name, value in expected.items():
     check(close(values.get(name), value, 1e-6), "proxy %s = %r (expected %r)"
           % (name, values.get(name), value))
