@@ -117,11 +117,12 @@ class GuiDriver:
     def widget(self, name):
         return self.state.get("widgets", {}).get(name, {})
 
-    def wait_until(self, predicate, seconds=20, period=0.3):
-        """Polls the state until predicate(state) holds; returns whether it did."""
+    def wait_until(self, predicate, seconds=20, period=0.3, reply_seconds=30):
+        """Polls the state until predicate(state) holds; returns whether it did. A queued action
+        (trigger) holds the replies until it is over: ``reply_seconds`` bounds that wait."""
         deadline = time.time() + seconds
         while time.time() < deadline:
-            if self.command("state") is None:
+            if self.command("state", seconds=reply_seconds) is None:
                 return False
             if predicate(self.state):
                 return True

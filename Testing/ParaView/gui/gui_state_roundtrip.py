@@ -168,7 +168,7 @@ def body(gui, check):
     gui.run("set", "lowerThreshold", saved["upperThreshold"]["value"])
     check(gui.state["session"]["running"], "the session still runs before the load")
     # ...and loads the state into the running session (File > Load State).
-    gui.run("loadstate", state)
+    gui.run("loadstate", state, seconds=120)  # synchronous: the state rebuilds the pipeline
     check(gui.alive(), "ParaView survives loading a state into a running session")
     loaded = gui.wait_until(lambda s: "mm" in s["widgets"]["seedLabel"]["text"]
                             and len(s["session"]["registered"]) == 1
@@ -200,14 +200,14 @@ def body(gui, check):
     # Edit > Reset Session as a user does it: panel open, the loaded session running.
     gui.run("trigger", "actionDelete_All")
     check(gui.answer_dialog("Delete All", "Return"), "Reset Session asked for confirmation")
-    check(gui.wait_until(lambda s: not s.get("sources"), seconds=15),
+    check(gui.wait_until(lambda s: not s.get("sources"), seconds=15, reply_seconds=120),
           "Reset Session removed the pipeline (%r)" % gui.state.get("sources"))
     check(gui.alive(), "ParaView survives Edit > Reset Session after a state round trip")
     check(gui.state["session"]["exists"] is False and gui.state["session"]["registered"] == [],
           "no session after the reset (%r)" % gui.state.get("session"))
 
     # The state into the empty session: the panel comes back once more.
-    gui.run("loadstate", state)
+    gui.run("loadstate", state, seconds=120)  # synchronous: the state rebuilds the pipeline
     restored = gui.wait_until(lambda s: "mm" in s["widgets"]["seedLabel"]["text"]
                               and s["session"]["exists"], seconds=20)
     check(restored, "the seed comes back with the state (%r)" % gui.widget("seedLabel"))

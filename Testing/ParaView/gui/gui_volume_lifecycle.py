@@ -54,7 +54,8 @@ def body(gui, check):
           "the chooser offers the new volume (%r)" % gui.widget("volumeCombo").get("items"))
     gui.run("trigger", "actionDelete_All")
     check(gui.answer_dialog("Delete All", "Return"), "Reset Session asked for confirmation")
-    check(gui.wait_until(lambda s: "Second" not in s.get("sources", []), seconds=15),
+    check(gui.wait_until(lambda s: "Second" not in s.get("sources", []), seconds=15,
+                         reply_seconds=120),
           "Reset Session removed the pipeline (%r)" % gui.state.get("sources"))
     check(gui.alive(), "ParaView survives Edit > Reset Session with the panel open")
     gui.run("state")
