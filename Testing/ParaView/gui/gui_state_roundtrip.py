@@ -199,7 +199,8 @@ def body(gui, check):
 
     # Edit > Reset Session as a user does it: panel open, the loaded session running.
     gui.run("trigger", "actionDelete_All")
-    check(gui.answer_dialog("Delete All", "Return"), "Reset Session asked for confirmation")
+    check(gui.answer_dialog("Delete All", "Return", seconds=60.0),
+          "Reset Session asked for confirmation")
     check(gui.wait_until(lambda s: not s.get("sources"), seconds=15, reply_seconds=120),
           "Reset Session removed the pipeline (%r)" % gui.state.get("sources"))
     check(gui.alive(), "ParaView survives Edit > Reset Session after a state round trip")
