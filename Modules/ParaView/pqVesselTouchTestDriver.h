@@ -8,7 +8,10 @@
 //
 // Verbs: state | trigger ACTION (queued: the reply comes before any dialog it opens) | click BUTTON
 // | check BUTTON|ACTION 0|1 | set WIDGET VALUE | select SOURCE ("" for none) | python SCRIPT (run
-// in the GUI's Python) | capture PNG (the active render view's image) | render.
+// in the GUI's Python) | capture PNG (the active render view's image) | render | seed X Y Z (the
+// seed picker reports a pick at world point X Y Z mm of the chosen volume, as a click whose ray's
+// brightest voxel lies there does: for volumes whose brightest voxel under a click is not the
+// vessel wanted).
 #ifndef pqVesselTouchTestDriver_h
 #define pqVesselTouchTestDriver_h
 
