@@ -497,6 +497,12 @@ void pqVesselTouchCenterlineWorkflow::extract()
     this->Ui.lowerThreshold->value(),
     this->Ui.upperThreshold->value(),
     activeRenderView());
+  if (this->Extraction->isRunning())
+  {
+    this->setExtractMessage(
+      tr("Extracting in the background: the view and a running session go on; Cancel stops it."),
+      false);
+  }
   this->updateRunState();
 }
 
