@@ -12,6 +12,7 @@
 #include "vtouchVoxelCoding.h"
 
 #include <gtest/gtest.h>
+#include <itkMultiThreaderBase.h>
 
 #include <algorithm>
 #include <atomic>
@@ -25,6 +26,14 @@ namespace vtouch
 namespace
 {
 
+/// ITK's smoothing (the tubularity) runs on the calling thread here: ITK's own thread pool is not
+/// what these tests are about, and TSan, which does not see into the uninstrumented ITK library,
+/// reports the pool's internal hand-offs.
+void itkOnTheCallingThread()
+{
+  itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(1);
+}
+
 /// A raw-angiogram phantom (random tree, partial volume, noise, plates and blobs) of 96^3 voxels
 /// and the world position of its root, where a user would click.
 struct Angiogram
@@ -35,6 +44,7 @@ struct Angiogram
 
   Angiogram()
   {
+    itkOnTheCallingThread();
     PhantomSpec spec;
     spec.shape = PhantomShape::RawAngiogram;
     spec.dimensions = { 96, 96, 96 };
