@@ -16,14 +16,10 @@
 #include "pqPipelineSource.h"
 #include "pqRenderView.h"
 
-#include "vtkAlgorithm.h"
-#include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
-#include "vtkImageData.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
 #include "vtkPVDataSetAttributesInformation.h"
-#include "vtkPointData.h"
 #include "vtkPVXMLElement.h"
 #include "vtkSMProperty.h"
 #include "vtkSMProxyLocator.h"
@@ -36,7 +32,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 using pqVesselTouchVoxelSample::neighbourhoodMedian;
 using pqVesselTouchVoxelSample::sampleVoxels;
