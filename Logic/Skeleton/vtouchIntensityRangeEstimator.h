@@ -21,6 +21,7 @@
 // A volume of two values (a binary mask) gives [midpoint, maximum]: the mask as drawn.
 #pragma once
 
+#include "vtouchProgress.h"
 #include "vtouchVolumeView.h"
 
 #include <algorithm>
@@ -76,13 +77,17 @@ class IntensityRangeEstimator
 public:
   using Parameters = IntensityRangeParameters;
 
+  /// `progress`: the whole-volume scan's check points (may throw Cancelled).
   template<typename T>
   static IntensityRange fromSeed(const VolumeView<T>& volume,
     const std::array<std::int64_t, 3>& seed,
-    const Parameters& p = Parameters{});
+    const Parameters& p = Parameters{},
+    const ProgressSpan& progress = ProgressSpan());
 
   template<typename T>
-  static IntensityRange fromVolume(const VolumeView<T>& volume, const Parameters& p = Parameters{});
+  static IntensityRange fromVolume(const VolumeView<T>& volume,
+    const Parameters& p = Parameters{},
+    const ProgressSpan& progress = ProgressSpan());
 
   static std::string backgroundMessage(double intensity);
   static std::string outsideMessage();
@@ -94,11 +99,12 @@ private:
     bool twoValued = true; ///< at most two distinct values
   };
   template<typename T>
-  static Scan scan(const VolumeView<T>& volume);
+  static Scan scan(const VolumeView<T>& volume, const ProgressSpan& progress);
 };
 
 template<typename T>
-IntensityRangeEstimator::Scan IntensityRangeEstimator::scan(const VolumeView<T>& volume)
+IntensityRangeEstimator::Scan IntensityRangeEstimator::scan(const VolumeView<T>& volume,
+  const ProgressSpan& progress)
 {
   Scan s;
   const std::uint64_t n = volume.size();
@@ -106,21 +112,28 @@ IntensityRangeEstimator::Scan IntensityRangeEstimator::scan(const VolumeView<T>&
   T lo = v[0], hi = v[0];
   T first = v[0], second = v[0];
   bool haveSecond = false, two = true;
-  for (std::uint64_t i = 0; i < n; ++i)
+  // In chunks: a check point per chunk, the inner loop left as tight as it was.
+  constexpr std::uint64_t kChunk = std::uint64_t{ 1 } << 20;
+  for (std::uint64_t begin = 0; begin < n; begin += kChunk)
   {
-    const T x = v[i];
-    lo = std::min(lo, x);
-    hi = std::max(hi, x);
-    if (two && !(x == first))
+    progress.report(static_cast<double>(begin) / static_cast<double>(n));
+    const std::uint64_t end = std::min(n, begin + kChunk);
+    for (std::uint64_t i = begin; i < end; ++i)
     {
-      if (!haveSecond)
+      const T x = v[i];
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+      if (two && !(x == first))
       {
-        second = x;
-        haveSecond = true;
-      }
-      else if (!(x == second))
-      {
-        two = false;
+        if (!haveSecond)
+        {
+          second = x;
+          haveSecond = true;
+        }
+        else if (!(x == second))
+        {
+          two = false;
+        }
       }
     }
   }
@@ -133,7 +146,8 @@ IntensityRangeEstimator::Scan IntensityRangeEstimator::scan(const VolumeView<T>&
 template<typename T>
 IntensityRange IntensityRangeEstimator::fromSeed(const VolumeView<T>& volume,
   const std::array<std::int64_t, 3>& seed,
-  const Parameters& p)
+  const Parameters& p,
+  const ProgressSpan& progress)
 {
   IntensityRange r;
   if (volume.size() == 0 || !volume.inside(seed[0], seed[1], seed[2]))
@@ -141,7 +155,7 @@ IntensityRange IntensityRangeEstimator::fromSeed(const VolumeView<T>& volume,
     r.message = outsideMessage();
     return r;
   }
-  const Scan s = scan(volume);
+  const Scan s = scan(volume, progress);
   r.upper = s.maximum;
   // The brightest voxel near the click.
   double peak = volume.at(seed[0], seed[1], seed[2]);
@@ -224,7 +238,9 @@ IntensityRange IntensityRangeEstimator::fromSeed(const VolumeView<T>& volume,
 }
 
 template<typename T>
-IntensityRange IntensityRangeEstimator::fromVolume(const VolumeView<T>& volume, const Parameters& p)
+IntensityRange IntensityRangeEstimator::fromVolume(const VolumeView<T>& volume,
+  const Parameters& p,
+  const ProgressSpan& progress)
 {
   IntensityRange r;
   if (volume.size() == 0)
@@ -232,7 +248,7 @@ IntensityRange IntensityRangeEstimator::fromVolume(const VolumeView<T>& volume, 
     r.message = "The volume is empty.";
     return r;
   }
-  const Scan s = scan(volume);
+  const Scan s = scan(volume, progress);
   r.upper = s.maximum;
   if (s.minimum == s.maximum)
   {

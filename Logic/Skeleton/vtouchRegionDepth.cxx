@@ -6,7 +6,8 @@
 namespace vtouch
 {
 
-std::vector<std::uint16_t> RegionDepth::layers(const SparseVesselMask& mask)
+std::vector<std::uint16_t> RegionDepth::layers(const SparseVesselMask& mask,
+  const ProgressSpan& progress)
 {
   const auto& d = mask.dims();
   std::vector<std::uint16_t> depth(mask.vesselCount(), 0);
@@ -21,9 +22,12 @@ std::vector<std::uint16_t> RegionDepth::layers(const SparseVesselMask& mask)
     return i >= 0 && j >= 0 && k >= 0 && i < d[0] && j < d[1] && k < d[2] &&
            mask.test(static_cast<std::uint64_t>(i + d[0] * (j + d[1] * k)));
   };
+  // Every voxel is visited twice: once for the border, once when its layer is reached.
+  ProgressCounter counter(progress, 2 * mask.vesselCount());
   mask.forEach(
     [&](std::uint64_t lin)
     {
+      counter.tick();
       const auto c = coordinates(lin);
       const bool border = !inMask(c[0] - 1, c[1], c[2]) || !inMask(c[0] + 1, c[1], c[2]) ||
                           !inMask(c[0], c[1] - 1, c[2]) || !inMask(c[0], c[1] + 1, c[2]) ||
@@ -42,6 +46,7 @@ std::vector<std::uint16_t> RegionDepth::layers(const SparseVesselMask& mask)
     next.clear();
     for (std::uint64_t lin : front)
     {
+      counter.tick();
       const auto c = coordinates(lin);
       for (std::int64_t dk = -1; dk <= 1; ++dk)
         for (std::int64_t dj = -1; dj <= 1; ++dj)

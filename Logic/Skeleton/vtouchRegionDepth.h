@@ -5,6 +5,7 @@
 // the tubularity and the neck cutter work at.
 #pragma once
 
+#include "vtouchProgress.h"
 #include "vtouchSparseVesselMask.h"
 
 #include <cstdint>
@@ -16,8 +17,10 @@ namespace vtouch
 class RegionDepth
 {
 public:
-  /// depth[mask.rank(lin)] for every voxel of `mask` (finalized).
-  static std::vector<std::uint16_t> layers(const SparseVesselMask& mask);
+  /// depth[mask.rank(lin)] for every voxel of `mask` (finalized). `progress`: check points every
+  /// 2^16 voxels (may throw Cancelled).
+  static std::vector<std::uint16_t> layers(const SparseVesselMask& mask,
+    const ProgressSpan& progress = ProgressSpan());
 };
 
 } // namespace vtouch

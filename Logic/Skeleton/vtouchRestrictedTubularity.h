@@ -17,6 +17,7 @@
 // largest Hessian norm (a region-independent, unit-free measure); alpha = beta = 0.5 as theirs.
 #pragma once
 
+#include "vtouchProgress.h"
 #include "vtouchSparseVesselMask.h"
 #include "vtouchVolumeView.h"
 
@@ -64,18 +65,21 @@ public:
   /// Frangi's measure for one Hessian's eigenvalues (bright tubes: l2, l3 < 0).
   static double measure(double l1, double l2, double l3, const Parameters& p);
 
+  /// `progress`: a check point per tile (may throw Cancelled).
   template<typename T>
   static Result compute(const VolumeView<T>& volume,
     const SparseVesselMask& region,
     const std::vector<std::uint16_t>& depth,
-    const Parameters& p);
+    const Parameters& p,
+    const ProgressSpan& progress = ProgressSpan());
 };
 
 template<typename T>
 RestrictedTubularity::Result RestrictedTubularity::compute(const VolumeView<T>& volume,
   const SparseVesselMask& region,
   const std::vector<std::uint16_t>& depth,
-  const Parameters& p)
+  const Parameters& p,
+  const ProgressSpan& progress)
 {
   using Image = itk::Image<float, 3>;
   using Smoothing = itk::SmoothingRecursiveGaussianImageFilter<Image, Image>;
@@ -94,9 +98,12 @@ RestrictedTubularity::Result RestrictedTubularity::compute(const VolumeView<T>& 
     std::uint32_t scales; // bit s: sc[s] lies in the voxel's window
   };
   std::vector<Site> sites;
+  // The sites' search is a tenth of the work; the tiles the rest.
+  ProgressCounter siteCounter(progress.part(0.0, 0.1), region.vesselCount());
   region.forEach(
     [&](std::uint64_t lin)
     {
+      siteCounter.tick();
       const std::uint32_t r = region.rank(lin);
       const auto c = volume.index(lin);
       for (std::int64_t dk = -1; dk <= 1; ++dk)
@@ -139,7 +146,14 @@ RestrictedTubularity::Result RestrictedTubularity::compute(const VolumeView<T>& 
     }
   }
   const std::int64_t t = p.tile_voxels;
-  for (std::size_t first = 0; first < sc.size();)
+  // The grids (runs of scales with one factor), for the progress of each.
+  std::size_t levels = 1;
+  for (std::size_t s = 1; s < sc.size(); ++s)
+  {
+    levels += factor[s] != factor[s - 1] ? 1 : 0;
+  }
+  std::size_t level = 0;
+  for (std::size_t first = 0; first < sc.size(); ++level)
   {
     const std::int64_t f = factor[first];
     std::size_t last = first;
@@ -304,10 +318,14 @@ RestrictedTubularity::Result RestrictedTubularity::compute(const VolumeView<T>& 
     }
     // One tile after another; ITK smooths each tile on its own thread pool. (Tiles on two
     // threads of our own, each with a one-work-unit ITK filter, lost tiles' results now and then
-    // on large trees: not done.)
-    for (std::size_t tile : work)
+    // on large trees: not done.) A check point before each tile.
+    const double levelShare = 0.9 / static_cast<double>(levels);
+    const ProgressSpan levelProgress = progress.part(0.1 + levelShare * static_cast<double>(level),
+      0.1 + levelShare * static_cast<double>(level + 1));
+    for (std::size_t w = 0; w < work.size(); ++w)
     {
-      result.hessianVoxels += runTile(tile);
+      levelProgress.report(static_cast<double>(w) / static_cast<double>(work.size()));
+      result.hessianVoxels += runTile(work[w]);
     }
     first = last;
   }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "vtouchIntensityRangeEstimator.h"
+#include "vtouchProgress.h"
 #include "vtouchSparseVesselMask.h"
 #include "vtouchVolumeView.h"
 
@@ -25,14 +26,19 @@ public:
   static constexpr int kMaximumStrongNeighbours = 6;
 
   /// The region of `seed` (must be a voxel of the range: IntensityRange::seedIndex).
+  /// `progress`: check points every 2^16 voxels joined (the fraction is of the volume, an upper
+  /// bound of the region); may throw Cancelled.
   template<typename T>
   static SparseVesselMask grow(const VolumeView<T>& volume,
     const IntensityRange& range,
-    const std::array<std::int64_t, 3>& seed);
+    const std::array<std::int64_t, 3>& seed,
+    const ProgressSpan& progress = ProgressSpan());
 
   /// Without a seed: every voxel in [lower, upper] (the coder keeps the large components).
   template<typename T>
-  static SparseVesselMask threshold(const VolumeView<T>& volume, const IntensityRange& range);
+  static SparseVesselMask threshold(const VolumeView<T>& volume,
+    const IntensityRange& range,
+    const ProgressSpan& progress = ProgressSpan());
 
 private:
   template<typename T>
@@ -98,7 +104,8 @@ bool SeededRegionGrower::ridge(const VolumeView<T>& v,
 template<typename T>
 SparseVesselMask SeededRegionGrower::grow(const VolumeView<T>& volume,
   const IntensityRange& range,
-  const std::array<std::int64_t, 3>& seed)
+  const std::array<std::int64_t, 3>& seed,
+  const ProgressSpan& progress)
 {
   SparseVesselMask mask(volume.dims);
   if (!volume.inside(seed[0], seed[1], seed[2]))
@@ -108,8 +115,10 @@ SparseVesselMask SeededRegionGrower::grow(const VolumeView<T>& volume,
   }
   std::vector<std::uint64_t> stack{ volume.linear(seed[0], seed[1], seed[2]) };
   mask.set(stack.back());
+  ProgressCounter counter(progress, volume.size());
   while (!stack.empty())
   {
+    counter.tick();
     const std::uint64_t lin = stack.back();
     stack.pop_back();
     const auto c = volume.index(lin);
@@ -137,12 +146,15 @@ SparseVesselMask SeededRegionGrower::grow(const VolumeView<T>& volume,
 
 template<typename T>
 SparseVesselMask SeededRegionGrower::threshold(const VolumeView<T>& volume,
-  const IntensityRange& range)
+  const IntensityRange& range,
+  const ProgressSpan& progress)
 {
   SparseVesselMask mask(volume.dims);
   const std::uint64_t n = volume.size();
+  ProgressCounter counter(progress, (n + 63) / 64, ProgressCounter::kVoxelPeriod / 64);
   for (std::uint64_t w = 0; w < (n + 63) / 64; ++w)
   {
+    counter.tick();
     std::uint64_t bits = 0;
     const std::uint64_t last = std::min(n, w * 64 + 64);
     for (std::uint64_t i = w * 64; i < last; ++i)

@@ -46,9 +46,12 @@ TubeNeckCutter::Result TubeNeckCutter::cut(const SparseVesselMask& region,
   const std::vector<float>& tubularity,
   float coreTubularity,
   float thinCoreTubularity,
-  const std::array<std::int64_t, 3>* seed)
+  const std::array<std::int64_t, 3>* seed,
+  const ProgressSpan& progress)
 {
   const Grid g{ region.dims() };
+  // Three passes over the region (cores, reach, kept), then the seed's component.
+  ProgressCounter counter(progress.part(0.0, 0.8), 3 * region.vesselCount());
   // reach[rank]: layers left to spread (0 = not reached). Cores start at depth + 1.
   std::vector<std::uint16_t> reach(region.vesselCount(), 0);
   std::vector<std::vector<std::uint64_t>> buckets;
@@ -56,6 +59,7 @@ TubeNeckCutter::Result TubeNeckCutter::cut(const SparseVesselMask& region,
   region.forEach(
     [&](std::uint64_t lin)
     {
+      counter.tick();
       const std::uint32_t r = region.rank(lin);
       bool core = tubularity[r] >= coreTubularity;
       if (!core && depth[r] <= 1 && tubularity[r] >= thinCoreTubularity)
@@ -85,6 +89,7 @@ TubeNeckCutter::Result TubeNeckCutter::cut(const SparseVesselMask& region,
     for (std::size_t q = 0; q < buckets[b].size(); ++q)
     {
       const std::uint64_t lin = buckets[b][q];
+      counter.tick();
       if (reach[region.rank(lin)] != b)
       {
         continue; // reached later with more
@@ -112,6 +117,7 @@ TubeNeckCutter::Result TubeNeckCutter::cut(const SparseVesselMask& region,
   region.forEach(
     [&](std::uint64_t lin)
     {
+      counter.tick();
       if (reach[region.rank(lin)] > 0)
       {
         kept.set(lin);
@@ -145,7 +151,8 @@ TubeNeckCutter::Result TubeNeckCutter::cut(const SparseVesselMask& region,
         }
       }
   result.seedKept = best != std::numeric_limits<std::int64_t>::max();
-  result.mask = result.seedKept ? component(kept, result.seed) : SparseVesselMask(region.dims());
+  result.mask = result.seedKept ? component(kept, result.seed, progress.part(0.8, 1.0))
+                                : SparseVesselMask(region.dims());
   if (!result.seedKept)
   {
     result.mask.finalize();
@@ -154,7 +161,8 @@ TubeNeckCutter::Result TubeNeckCutter::cut(const SparseVesselMask& region,
 }
 
 SparseVesselMask TubeNeckCutter::component(const SparseVesselMask& mask,
-  const std::array<std::int64_t, 3>& seed)
+  const std::array<std::int64_t, 3>& seed,
+  const ProgressSpan& progress)
 {
   const Grid g{ mask.dims() };
   SparseVesselMask out(mask.dims());
@@ -165,8 +173,10 @@ SparseVesselMask TubeNeckCutter::component(const SparseVesselMask& mask,
   }
   std::vector<std::uint64_t> stack{ g.lin(seed[0], seed[1], seed[2]) };
   out.set(stack.back());
+  ProgressCounter counter(progress, mask.vesselCount());
   while (!stack.empty())
   {
+    counter.tick();
     const std::uint64_t lin = stack.back();
     stack.pop_back();
     forNeighbours(g,

@@ -11,6 +11,7 @@
 // §3.1) codes the region as given.
 #pragma once
 
+#include "vtouchProgress.h"
 #include "vtouchSparseVesselMask.h"
 
 #include <array>
@@ -40,11 +41,14 @@ public:
     const std::vector<float>& tubularity,
     float coreTubularity,
     float thinCoreTubularity,
-    const std::array<std::int64_t, 3>* seed);
+    const std::array<std::int64_t, 3>* seed,
+    const ProgressSpan& progress = ProgressSpan());
 
   /// The 26-connected component of `seed` in `mask` (empty when the seed is not in it).
+  /// `progress`: check points every 2^16 voxels (may throw Cancelled), as in cut().
   static SparseVesselMask component(const SparseVesselMask& mask,
-    const std::array<std::int64_t, 3>& seed);
+    const std::array<std::int64_t, 3>& seed,
+    const ProgressSpan& progress = ProgressSpan());
 };
 
 } // namespace vtouch

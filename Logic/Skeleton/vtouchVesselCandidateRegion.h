@@ -7,9 +7,12 @@
 // A binary mask (two values) skips 3-4: it is coded as drawn, as before. When `automatic` is off
 // the caller's range is used (the override) and the same stages run on it.
 // Every failure is a user-facing message and an empty region; nothing throws for bad input.
+// Settings::progress, when set, receives the fraction done at every stage's check points and
+// stops the run when it returns false: extract() then throws vtouch::Cancelled.
 #pragma once
 
 #include "vtouchIntensityRangeEstimator.h"
+#include "vtouchProgress.h"
 #include "vtouchRegionDepth.h"
 #include "vtouchRestrictedTubularity.h"
 #include "vtouchSeededRegionGrower.h"
@@ -38,6 +41,9 @@ public:
     float coreTubularity = 0.3F;
     float thinCoreTubularity = 0.1F;
     int maximumDepth_voxels = 48; ///< caps the largest scale (time), in voxels of the grid
+    /// Fraction done in [0, 1] at the stages' check points; returning false cancels (extract()
+    /// throws Cancelled). Empty: no progress, no cancel.
+    ProgressCallback progress;
   };
   struct Result
   {
@@ -69,6 +75,14 @@ VesselCandidateRegion::Result VesselCandidateRegion::extract(const VolumeView<T>
   Result r;
   r.mask = SparseVesselMask(volume.dims);
   r.mask.finalize();
+  // Shares of the run by stage, from their times on raw angiograms (Docs/PERFORMANCE.md): the
+  // tubularity takes most of it.
+  const ProgressSpan all(&s.progress);
+  const ProgressSpan rangeProgress = all.part(0.0, 0.1);
+  const ProgressSpan growProgress = all.part(0.1, 0.2);
+  const ProgressSpan depthProgress = all.part(0.2, 0.25);
+  const ProgressSpan tubularityProgress = all.part(0.25, 0.9);
+  const ProgressSpan necksProgress = all.part(0.9, 1.0);
   if (s.useSeed && !volume.inside(s.seed[0], s.seed[1], s.seed[2]))
   {
     r.message = IntensityRangeEstimator::outsideMessage();
@@ -76,8 +90,10 @@ VesselCandidateRegion::Result VesselCandidateRegion::extract(const VolumeView<T>
   }
   if (s.automatic)
   {
-    r.range = s.useSeed ? IntensityRangeEstimator::fromSeed(volume, s.seed)
-                        : IntensityRangeEstimator::fromVolume(volume);
+    r.range = s.useSeed ? IntensityRangeEstimator::fromSeed(
+                            volume, s.seed, IntensityRangeEstimator::Parameters{}, rangeProgress)
+                        : IntensityRangeEstimator::fromVolume(
+                            volume, IntensityRangeEstimator::Parameters{}, rangeProgress);
   }
   else
   {
@@ -107,11 +123,11 @@ VesselCandidateRegion::Result VesselCandidateRegion::extract(const VolumeView<T>
         IntensityRangeEstimator::backgroundMessage(volume.at(s.seed[0], s.seed[1], s.seed[2]));
       return r;
     }
-    region = SeededRegionGrower::grow(volume, r.range, q);
+    region = SeededRegionGrower::grow(volume, r.range, q, growProgress);
   }
   else
   {
-    region = SeededRegionGrower::threshold(volume, r.range);
+    region = SeededRegionGrower::threshold(volume, r.range, growProgress);
   }
   r.grownVoxels = region.vesselCount();
   lap(r, "grow");
@@ -129,7 +145,7 @@ VesselCandidateRegion::Result VesselCandidateRegion::extract(const VolumeView<T>
     r.ok = true;
     return r;
   }
-  const std::vector<std::uint16_t> depth = RegionDepth::layers(region);
+  const std::vector<std::uint16_t> depth = RegionDepth::layers(region, depthProgress);
   lap(r, "depth");
   const int deepest = std::min<int>(
     s.maximumDepth_voxels, depth.empty() ? 1 : *std::max_element(depth.begin(), depth.end()));
@@ -146,15 +162,17 @@ VesselCandidateRegion::Result VesselCandidateRegion::extract(const VolumeView<T>
     tp.structureness = 1.0;
   }
   const RestrictedTubularity::Result tube =
-    RestrictedTubularity::compute(volume, region, depth, tp);
+    RestrictedTubularity::compute(volume, region, depth, tp, tubularityProgress);
   lap(r, "tubularity");
   TubeNeckCutter::Result cut = TubeNeckCutter::cut(region,
     depth,
     tube.tubularity,
     s.coreTubularity,
     s.thinCoreTubularity,
-    s.useSeed ? &r.range.seedIndex : nullptr);
+    s.useSeed ? &r.range.seedIndex : nullptr,
+    necksProgress);
   lap(r, "necks");
+  all.report(1.0);
   r.coreVoxels = cut.coreVoxels;
   if (cut.coreVoxels == 0)
   {

@@ -62,10 +62,15 @@ RawSkeleton VoxelCoder::Impl::run()
   const std::uint64_t n = mask.vesselCount();
   out.vesselVoxels = n;
   totalWork = std::max<std::uint64_t>(1, n * 6);
+  // The codes' arrays (17 bytes per vessel voxel): their first touch takes a while on large
+  // masks, a check point after each.
   bs.assign(n, kInf);
+  checkpoint();
   aux.assign(n, 0);
+  checkpoint();
   flags.assign(n, 0);
   ss.assign(n, kInf);
+  checkpoint();
   order.reserve(n);
   // The BS code runs beside the first propagation(s); buildClusters() waits for it.
   startBoundaryCode();

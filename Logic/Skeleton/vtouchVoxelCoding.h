@@ -5,6 +5,7 @@
 // the filter maps it to world coordinates with the image origin and direction.
 #pragma once
 
+#include "vtouchProgress.h"
 #include "vtouchSparseVesselMask.h"
 
 #include <array>
@@ -18,14 +19,10 @@
 namespace vtouch
 {
 
-/// Thrown by VoxelCoder::run() when the progress callback asks to stop.
-class VoxelCodingAborted : public std::runtime_error
+/// Thrown by VoxelCoder::run() when the progress callback asks to stop (a Cancelled: callers
+/// that stop several stages catch that).
+class VoxelCodingAborted : public Cancelled
 {
-public:
-  VoxelCodingAborted()
-    : std::runtime_error("voxel coding aborted")
-  {
-  }
 };
 
 struct VoxelCodingParameters
@@ -95,7 +92,8 @@ public:
   VoxelCoder(const SparseVesselMask& mask, const VoxelCodingParameters& parameters);
 
   /// `progress` (may be empty) receives values in [0,1]; returning false aborts
-  /// (VoxelCodingAborted).
+  /// (VoxelCodingAborted) at the next check point, every 2^16 units of work (about 2^16 / 6
+  /// vessel voxels). The BS code's second thread stops at its next plane and is joined first.
   RawSkeleton run(const std::function<bool(double)>& progress = {});
 
 private:

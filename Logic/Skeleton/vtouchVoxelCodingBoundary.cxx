@@ -59,6 +59,10 @@ void VoxelCoder::Impl::boundaryRowPass()
       {
         tick();
       }
+      else if ((r & 0xFFFF) == 0)
+      {
+        boundaryCheckpoint();
+      }
     });
   if (r > 0)
   {
@@ -79,6 +83,7 @@ void VoxelCoder::Impl::boundaryLinePass(int axis)
   std::vector<std::uint32_t> start(static_cast<std::size_t>(nx) + 1);
   for (std::int64_t p = 0; p < planes; ++p)
   {
+    boundaryCheckpoint();
     const auto rowBegin = [&](std::int64_t t)
     { return static_cast<std::uint64_t>(nx * (axis == 1 ? t + ny * p : p + ny * t)); };
     std::fill(start.begin(), start.end(), 0U);
@@ -283,6 +288,7 @@ VoxelCoder::Impl::~Impl()
 {
   if (boundaryThread.joinable())
   {
+    boundaryStop = true; // the run is unwinding (cancelled or failed): no one needs the BS code
     boundaryThread.join();
   }
 }

@@ -15,8 +15,13 @@ void VoxelCoder::Impl::propagate(const std::vector<std::uint32_t>& sources)
     queue.push(s, 0.0);
   }
   std::uint32_t lin = 0;
+  std::uint32_t pops = 0;
   while (queue.pop(lin))
   {
+    if ((++pops & 0xFFFF) == 0)
+    {
+      checkpoint(); // stale entries are not work, but they take time
+    }
     const std::uint32_t r = mask.rank(lin);
     if (flags[r] & kDone)
     {
@@ -211,9 +216,14 @@ void VoxelCoder::Impl::buildClusters()
       aux[r] = r;
     }
   }
+  std::uint32_t visited = 0;
   visit(
     [&](std::uint32_t lin, std::uint32_t r)
     {
+      if ((++visited & 0xFFFF) == 0)
+      {
+        checkpoint(); // the union-find pass is not counted as work: a check point of its own
+      }
       if (whole)
       {
         aux[r] = r;
@@ -239,8 +249,13 @@ void VoxelCoder::Impl::buildClusters()
     });
   // The roots become the clusters, numbered in SS order (the order of the tips' tie-breaks).
   clusters.clear();
+  visited = 0;
   for (std::uint32_t lin : order)
   {
+    if ((++visited & 0xFFFF) == 0)
+    {
+      checkpoint();
+    }
     const std::uint32_t r = mask.rank(lin);
     if (aux[r] == r)
     {

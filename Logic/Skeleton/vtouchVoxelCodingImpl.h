@@ -8,6 +8,7 @@
 #include "vtouchVoxelCoding.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -209,12 +210,22 @@ struct VoxelCoder::Impl
   void tick(std::uint64_t amount = 1)
   {
     work += amount;
-    if ((work & 0xFFFF) < amount && progress)
+    if ((work & 0xFFFF) < amount)
     {
-      if (!progress(std::min(1.0, static_cast<double>(work) / static_cast<double>(totalWork))))
-      {
-        throw VoxelCodingAborted();
-      }
+      checkpoint();
+    }
+  }
+
+  /// Reports the progress so far; throws VoxelCodingAborted when the caller asks to stop. Loops
+  /// whose iterations are not counted as work (stale queue entries) call it every 2^16
+  /// iterations.
+  void checkpoint()
+  {
+    if (progress &&
+        !progress(std::min(1.0, static_cast<double>(work) / static_cast<double>(totalWork))))
+    {
+      boundaryStop = true; // the BS thread stops too, before the unwinding joins it
+      throw VoxelCodingAborted();
     }
   }
 
@@ -242,7 +253,18 @@ struct VoxelCoder::Impl
   std::thread boundaryThread;
   std::exception_ptr boundaryError;
   double boundarySeconds = 0.0;
-  bool boundaryQuiet = false;           // no tick() from the BS passes (second thread)
+  bool boundaryQuiet = false; // no tick() from the BS passes (second thread)
+  /// Set by the caller's thread when the run stops (cancelled, or an error): the BS thread checks
+  /// it at every plane and row chunk and gives up (Cancelled into boundaryError).
+  std::atomic<bool> boundaryStop{ false };
+  /// On the BS thread: throws Cancelled when boundaryStop is set.
+  void boundaryCheckpoint() const
+  {
+    if (boundaryQuiet && boundaryStop.load(std::memory_order_relaxed))
+    {
+      throw Cancelled();
+    }
+  }
   std::size_t boundaryScratchBytes = 0; // the BS code's largest scratch array
   void startBoundaryCode();
   void boundaryCodeOnThread();

@@ -152,7 +152,10 @@ protected:
   using Superclass::MakeOutput;
 
 private:
-  SparseVesselMask BuildMask() const;
+  SparseVesselMask BuildMask();
+  /// A check point between stages: reports `progress` (observers may set AbortGenerateData on
+  /// it) and throws itk::ProcessAborted when the run is to stop.
+  void CheckAbort(float progress);
   IndexType SeedIndex(const SparseVesselMask& mask) const;
   QSkeleton ToWorld(const RawSkeleton& raw) const;
   /// Voxel coding of `mask`, whose voxels are blocks of `factor`^3 input voxels; `seed` (input
@@ -179,6 +182,8 @@ private:
   unsigned long long m_CodeMemoryBytes{ 0 };
   RawSkeleton m_RawSkeleton;
   std::shared_ptr<const SparseVesselMask> m_VesselMask;
+  /// The mask's share of the run's progress (the vesselness, when on, takes half the run).
+  float m_MaskProgressShare{ 0.05F };
 };
 
 } // namespace vtouch

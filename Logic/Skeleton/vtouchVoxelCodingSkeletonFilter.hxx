@@ -6,6 +6,7 @@
 #include "vtouchCoarseSkeletonRefiner.h"
 #include "vtouchCurveGeometry.h"
 
+#include <itkCommand.h>
 #include <itkHessianToObjectnessMeasureImageFilter.h>
 #include <itkMultiScaleHessianBasedMeasureImageFilter.h>
 #include <itkSymmetricSecondRankTensor.h>
@@ -134,7 +135,20 @@ void VoxelCodingSkeletonFilter<TInputImage>::VerifyPreconditions() ITKv5_CONST
 }
 
 template<typename TInputImage>
-SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
+void VoxelCodingSkeletonFilter<TInputImage>::CheckAbort(float progress)
+{
+  this->UpdateProgress(progress);
+  if (this->GetAbortGenerateData())
+  {
+    itk::ProcessAborted e(__FILE__, __LINE__);
+    e.SetLocation(ITK_LOCATION);
+    e.SetDescription("VoxelCodingSkeletonFilter aborted");
+    throw e;
+  }
+}
+
+template<typename TInputImage>
+SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask()
 {
   const InputImageType* input = this->GetInput();
   const auto size = input->GetLargestPossibleRegion().GetSize();
@@ -187,6 +201,26 @@ SparseVesselMask VoxelCodingSkeletonFilter<TInputImage>::BuildMask() const
     multiScale->SetSigmaStepMethodToLogarithmic();
     multiScale->GenerateScalesOutputOff();
     multiScale->GenerateHessianOutputOff();
+    // Its progress is this filter's mask share, and an abort of this filter aborts it (ITK's
+    // own check points: its mini-pipeline's filters stop at their next progress report).
+    auto relay = itk::CStyleCommand::New();
+    struct Relay
+    {
+      Self* self;
+      itk::ProcessObject* inner;
+    } context{ this, multiScale.GetPointer() };
+    relay->SetClientData(&context);
+    relay->SetCallback(
+      [](itk::Object*, const itk::EventObject&, void* data)
+      {
+        auto* c = static_cast<Relay*>(data);
+        c->self->UpdateProgress(c->self->m_MaskProgressShare * c->inner->GetProgress());
+        if (c->self->GetAbortGenerateData())
+        {
+          c->inner->SetAbortGenerateData(true);
+        }
+      });
+    multiScale->AddObserver(itk::ProgressEvent(), relay);
     multiScale->Update();
     vesselness = multiScale->GetOutput();
     const float* v = vesselness->GetBufferPointer();
@@ -416,7 +450,8 @@ RawSkeleton VoxelCodingSkeletonFilter<TInputImage>::Code(const SparseVesselMask&
     return coder.run(
       [this](double p)
       {
-        this->UpdateProgress(static_cast<float>(0.05 + 0.9 * p));
+        const float share = this->m_MaskProgressShare;
+        this->UpdateProgress(share + (0.95F - share) * static_cast<float>(p));
         return !this->GetAbortGenerateData();
       });
   }
@@ -449,8 +484,10 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
   const auto seconds = [](Clock::time_point t0)
   { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   auto t0 = Clock::now();
+  this->m_MaskProgressShare = this->m_UseVesselness && !this->m_VesselMask ? 0.5F : 0.05F;
   const SparseVesselMask mask = this->BuildMask();
   const double maskSeconds = seconds(t0);
+  this->CheckAbort(this->m_MaskProgressShare);
   this->m_NumberOfVesselVoxels = mask.vesselCount();
   IndexType seedIndex;
   if (this->m_UseSeedPoint)
@@ -483,6 +520,7 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
     {
       CoarseSkeletonRefiner refiner(mask, { spacing[0], spacing[1], spacing[2] }, factor);
       this->m_RawSkeleton = refiner.refine(this->m_RawSkeleton);
+      this->CheckAbort(0.95F);
     }
   }
   if (factor == 1)
@@ -499,6 +537,7 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
     itkExceptionMacro("no vessel component of at least " << this->m_MinimumComponentSize
                                                          << " voxels has a centerline");
   }
+  this->CheckAbort(0.95F);
   t0 = Clock::now();
   output->Get() = this->ToWorld(this->m_RawSkeleton);
   this->m_RawSkeleton.stageSeconds.emplace_back("geometry", seconds(t0));

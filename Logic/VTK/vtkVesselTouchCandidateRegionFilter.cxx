@@ -58,6 +58,7 @@ int vtkVesselTouchCandidateRegionFilter::RequestData(vtkInformation*,
   this->IntensityRangeUsed[0] = this->LowerThreshold;
   this->IntensityRangeUsed[1] = this->UpperThreshold;
   this->ExtractionMessage.clear();
+  this->LastRunCancelled = false;
   const auto finish = [this, output](const std::string& message)
   {
     this->ExtractionMessage = message;
@@ -66,7 +67,7 @@ int vtkVesselTouchCandidateRegionFilter::RequestData(vtkInformation*,
       this->IntensityRangeUsed[1],
       this->AutomaticIntensityRange,
       message);
-    if (!message.empty())
+    if (!message.empty() && !this->LastRunCancelled)
     {
       vtkErrorMacro(<< message);
     }
@@ -93,10 +94,20 @@ int vtkVesselTouchCandidateRegionFilter::RequestData(vtkInformation*,
   request.upper = this->UpperThreshold;
   request.useSeed = this->UseSeedPoint;
   std::copy(this->SeedPoint, this->SeedPoint + 3, request.seed_World_mm);
+  request.progress = [this](double fraction)
+  {
+    this->UpdateProgress(fraction);
+    return !vtouch::cancelRequested(this->CancelFlag, this);
+  };
   vtouch::CandidateRegionOutcome region;
   try
   {
     region = vtouch::runCandidateRegion(input, scalars, request);
+  }
+  catch (const vtouch::Cancelled&)
+  {
+    this->LastRunCancelled = true;
+    return finish(vtouch::cancelledMessage());
   }
   catch (const std::bad_alloc&)
   {

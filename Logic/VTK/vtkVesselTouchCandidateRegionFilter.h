@@ -8,6 +8,7 @@
 // VesselCenterline runs); off: the voxels in [LowerThreshold, UpperThreshold] connected to the
 // seed. Field data: IntensityRangeUsed (lower, upper), IntensityRangeAutomatic (0/1),
 // ExtractionMessage (empty on success, else the user-facing reason; the mask is then all 0).
+// The GUI's Preview runs a private instance on another thread with a cancel flag.
 #ifndef vtkVesselTouchCandidateRegionFilter_h
 #define vtkVesselTouchCandidateRegionFilter_h
 
@@ -15,6 +16,9 @@
 #include "vtkVesselTouchLogicModule.h" // for export macro
 
 #include <string> // for ExtractionMessage
+#ifndef __VTK_WRAP__
+#include <atomic> // for the cancel flag
+#endif
 
 class VTKVESSELTOUCHLOGIC_EXPORT vtkVesselTouchCandidateRegionFilter : public vtkImageAlgorithm
 {
@@ -39,6 +43,15 @@ public:
 
   vtkGetVector2Macro(IntensityRangeUsed, double);
   const char* GetExtractionMessage() const { return this->ExtractionMessage.c_str(); }
+  /// Whether the last run was cancelled: an all-0 mask with ExtractionMessage "Cancelled.".
+  vtkGetMacro(LastRunCancelled, bool);
+#ifndef __VTK_WRAP__
+  /// As vtkVesselTouchCenterlineFilter::SetCancelFlag.
+  void SetCancelFlag(const std::atomic<bool>* flag)
+  {
+    this->CancelFlag = flag;
+  }
+#endif
 
 protected:
   vtkVesselTouchCandidateRegionFilter();
@@ -63,6 +76,10 @@ private:
   bool UseSeedPoint = false;
   double IntensityRangeUsed[2] = { 0.0, 0.0 };
   std::string ExtractionMessage;
+  bool LastRunCancelled = false;
+#ifndef __VTK_WRAP__
+  const std::atomic<bool>* CancelFlag = nullptr;
+#endif
 };
 
 #endif

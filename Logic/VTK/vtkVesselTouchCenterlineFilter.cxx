@@ -17,6 +17,8 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <itkCommand.h>
@@ -48,6 +50,8 @@ struct Settings
   int downsampleFactor;
   /// The candidate region to code (raw-angiogram path) or null (threshold the input).
   std::shared_ptr<const vtouch::SparseVesselMask> mask;
+  /// The coder's fraction done; returns false to abort it.
+  vtouch::ProgressCallback progress;
 };
 
 /// Wraps the VTK scalars as an ITK image (no copy) with the VTK geometry.
@@ -86,11 +90,7 @@ typename itk::Image<T, 3>::Pointer importImage(vtkImageData* image, T* data)
 
 /// Runs the ITK filter; throws itk::ExceptionObject (itk::ProcessAborted when aborted).
 template<typename T>
-vtouch::QSkeleton skeletonize(vtkVesselTouchCenterlineFilter* self,
-  vtkImageData* image,
-  T* data,
-  const Settings& s,
-  int& factorUsed)
+vtouch::QSkeleton skeletonize(vtkImageData* image, T* data, const Settings& s, int& factorUsed)
 {
   using Image = itk::Image<T, 3>;
   using Filter = vtouch::VoxelCodingSkeletonFilter<Image>;
@@ -117,20 +117,20 @@ vtouch::QSkeleton skeletonize(vtkVesselTouchCenterlineFilter* self,
   filter->SetVesselnessThreshold(s.vesselnessThreshold);
   filter->SetDownsampleFactor(static_cast<unsigned int>(std::max(0, s.downsampleFactor)));
   filter->SetVesselMask(s.mask);
-  // Progress to VTK; VTK's abort flag to ITK.
+  // Progress to VTK; VTK's abort flag and the cancel flag to ITK (on the thread that runs the
+  // filter: ITK invokes progress events on the thread that called Update()).
   auto progress = itk::CStyleCommand::New();
   struct Context
   {
-    vtkVesselTouchCenterlineFilter* self;
+    const Settings* settings;
     Filter* filter;
-  } context{ self, filter.GetPointer() };
+  } context{ &s, filter.GetPointer() };
   progress->SetClientData(&context);
   progress->SetCallback(
     [](itk::Object*, const itk::EventObject&, void* data)
     {
       auto* c = static_cast<Context*>(data);
-      c->self->UpdateProgress(c->filter->GetProgress());
-      if (c->self->GetAbortExecute())
+      if (c->settings->progress && !c->settings->progress(c->filter->GetProgress()))
       {
         c->filter->SetAbortGenerateData(true);
       }
@@ -234,6 +234,9 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->DownsampleFactorUsed = 0;
+  this->LastRunKey.clear();
+  this->LastRunPrecomputed = false;
+  this->LastRunCancelled = false;
   if (!input || !output)
   {
     vtkErrorMacro("VesselCenterline needs a vtkImageData input.");
@@ -288,6 +291,20 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
                   << this->DownsampleFactor << ".");
     return 1;
   }
+  this->LastRunKey = this->RunKey(input, scalars);
+  if (this->UsePrecomputed(this->LastRunKey, output))
+  {
+    return 1; // a background run of this input and these parameters computed it
+  }
+  const auto cancelled = [this, &fail]()
+  {
+    fail(vtouch::cancelledMessage());
+    this->LastRunCancelled = true;
+    return 1;
+  };
+  // Progress: the candidate region (raw path) is the first half, the coder the rest but the
+  // pruning's last 5 %; every report is a check point of the cancel flag.
+  const double coderBegin = this->AutomaticIntensityRange ? 0.5 : 0.0;
   // The raw-angiogram path: the range, the seed's network, tubes only.
   double lower = this->LowerThreshold, upper = this->UpperThreshold;
   double seed[3] = { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] };
@@ -299,10 +316,19 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     request.automatic = true;
     request.useSeed = this->UseSeedPoint;
     std::copy(this->SeedPoint, this->SeedPoint + 3, request.seed_World_mm);
+    request.progress = [this, coderBegin](double fraction)
+    {
+      this->UpdateProgress(coderBegin * fraction);
+      return !this->CancelRequested();
+    };
     vtouch::CandidateRegionOutcome region;
     try
     {
       region = vtouch::runCandidateRegion(input, scalars, request);
+    }
+    catch (const vtouch::Cancelled&)
+    {
+      return cancelled();
     }
     catch (const std::exception& e) // ITK exceptions are std::exceptions too
     {
@@ -354,7 +380,12 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     this->VesselnessNumberOfScales,
     this->VesselnessThreshold,
     this->DownsampleFactor,
-    mask };
+    mask,
+    [this, coderBegin](double fraction)
+    {
+      this->UpdateProgress(coderBegin + (0.95 - coderBegin) * fraction);
+      return !this->CancelRequested();
+    } };
   try
   {
     vtouch::QSkeleton skeleton;
@@ -363,16 +394,16 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     switch (scalars->GetDataType())
     {
       case VTK_FLOAT:
-        skeleton = skeletonize(this, input, static_cast<float*>(data), s, factorUsed);
+        skeleton = skeletonize(input, static_cast<float*>(data), s, factorUsed);
         break;
       case VTK_UNSIGNED_CHAR:
-        skeleton = skeletonize(this, input, static_cast<unsigned char*>(data), s, factorUsed);
+        skeleton = skeletonize(input, static_cast<unsigned char*>(data), s, factorUsed);
         break;
       case VTK_SHORT:
-        skeleton = skeletonize(this, input, static_cast<short*>(data), s, factorUsed);
+        skeleton = skeletonize(input, static_cast<short*>(data), s, factorUsed);
         break;
       case VTK_UNSIGNED_SHORT:
-        skeleton = skeletonize(this, input, static_cast<unsigned short*>(data), s, factorUsed);
+        skeleton = skeletonize(input, static_cast<unsigned short*>(data), s, factorUsed);
         break;
       default:
       {
@@ -382,8 +413,12 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
         {
           copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
         }
-        skeleton = skeletonize(this, input, copy.data(), s, factorUsed);
+        skeleton = skeletonize(input, copy.data(), s, factorUsed);
       }
+    }
+    if (this->CancelRequested())
+    {
+      return cancelled();
     }
     if (mask)
     {
@@ -430,11 +465,11 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     vtouch::addRangeFieldData(
       output->GetFieldData(), lower, upper, this->AutomaticIntensityRange, std::string());
     vtouch::addStageSeconds(output->GetFieldData(), candidateSeconds);
+    this->UpdateProgress(1.0);
   }
   catch (const itk::ProcessAborted&)
   {
-    fail("VesselCenterline aborted.");
-    vtkWarningMacro("VesselCenterline aborted.");
+    return cancelled(); // the cancel flag or AbortExecute stopped the coder
   }
   catch (const itk::ExceptionObject& e)
   {
@@ -447,6 +482,109 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     vtkErrorMacro(<< this->ExtractionMessage);
   }
   return 1;
+}
+
+bool vtkVesselTouchCenterlineFilter::CancelRequested()
+{
+  return vtouch::cancelRequested(this->CancelFlag, this);
+}
+
+std::string vtkVesselTouchCenterlineFilter::RunKey(vtkImageData* input, vtkDataArray* scalars) const
+{
+  // What the output depends on: the voxels (the array itself and its modification time: a
+  // shallow copy of the input shares both, a new or modified array changes them), the geometry
+  // and every parameter, printed exactly.
+  std::ostringstream key;
+  key.precision(17);
+  key << "scalars " << static_cast<const void*>(scalars) << " " << scalars->GetMTime() << " type "
+      << scalars->GetDataType() << " n " << scalars->GetNumberOfTuples();
+  int dims[3];
+  input->GetDimensions(dims);
+  const double* origin = input->GetOrigin();
+  const double* spacing = input->GetSpacing();
+  key << " dims " << dims[0] << " " << dims[1] << " " << dims[2] << " origin " << origin[0] << " "
+      << origin[1] << " " << origin[2] << " spacing " << spacing[0] << " " << spacing[1] << " "
+      << spacing[2] << " direction";
+  vtkMatrix3x3* m = input->GetDirectionMatrix();
+  for (int e = 0; e < 9; ++e)
+  {
+    key << " " << (m ? m->GetData()[e] : (e % 4 == 0 ? 1.0 : 0.0));
+  }
+  key << " automatic " << this->AutomaticIntensityRange << " range " << this->LowerThreshold << " "
+      << this->UpperThreshold << " seed " << this->UseSeedPoint << " " << this->SeedPoint[0] << " "
+      << this->SeedPoint[1] << " " << this->SeedPoint[2] << " component "
+      << this->MinimumComponentSize << " branch " << this->MinimumBranchLength << " smoothing "
+      << this->SmoothingWindow << " downsample " << this->DownsampleFactor << " vesselness "
+      << this->UseVesselness << " " << this->VesselnessSigmaMinimum << " "
+      << this->VesselnessSigmaMaximum << " " << this->VesselnessNumberOfScales << " "
+      << this->VesselnessThreshold;
+  return key.str();
+}
+
+bool vtkVesselTouchCenterlineFilter::UsePrecomputed(const std::string& key, vtkPolyData* output)
+{
+  // Consumed either way: a mismatch means the input or the parameters changed since.
+  const vtkSmartPointer<vtkPolyData> precomputed = this->PrecomputedOutput;
+  const std::string precomputedKey = this->PrecomputedKey;
+  this->PrecomputedOutput = nullptr;
+  this->PrecomputedKey.clear();
+  if (!precomputed || key != precomputedKey)
+  {
+    return false;
+  }
+  output->ShallowCopy(precomputed);
+  // The members the run would have set, from the field data it wrote.
+  vtkFieldData* fd = output->GetFieldData();
+  if (vtkDataArray* used = fd->GetArray("IntensityRangeUsed"))
+  {
+    this->IntensityRangeUsed[0] = used->GetComponent(0, 0);
+    this->IntensityRangeUsed[1] = used->GetComponent(used->GetNumberOfTuples() > 1 ? 1 : 0, 0);
+  }
+  if (auto* message = vtkStringArray::SafeDownCast(fd->GetAbstractArray("ExtractionMessage")))
+  {
+    this->ExtractionMessage = message->GetNumberOfValues() > 0 ? message->GetValue(0) : "";
+  }
+  if (vtkDataArray* factor = fd->GetArray("DownsampleFactorUsed"))
+  {
+    this->DownsampleFactorUsed = static_cast<int>(factor->GetComponent(0, 0));
+  }
+  this->LastRunPrecomputed = true;
+  this->UpdateProgress(1.0);
+  return true;
+}
+
+void vtkVesselTouchCenterlineFilter::SetPrecomputedOutput(vtkPolyData* output, const char* runKey)
+{
+  this->PrecomputedOutput = output;
+  this->PrecomputedKey = output && runKey ? runKey : "";
+  this->Modified(); // the pipeline runs this filter again, which returns it
+}
+
+void vtkVesselTouchCenterlineFilter::CopyParameters(vtkVesselTouchCenterlineFilter* other)
+{
+  if (!other || other == this)
+  {
+    return;
+  }
+  this->AutomaticIntensityRange = other->AutomaticIntensityRange;
+  this->LowerThreshold = other->LowerThreshold;
+  this->UpperThreshold = other->UpperThreshold;
+  std::copy(other->SeedPoint, other->SeedPoint + 3, this->SeedPoint);
+  this->UseSeedPoint = other->UseSeedPoint;
+  this->MinimumComponentSize = other->MinimumComponentSize;
+  this->MinimumBranchLength = other->MinimumBranchLength;
+  this->SmoothingWindow = other->SmoothingWindow;
+  this->DownsampleFactor = other->DownsampleFactor;
+  this->UseVesselness = other->UseVesselness;
+  this->VesselnessSigmaMinimum = other->VesselnessSigmaMinimum;
+  this->VesselnessSigmaMaximum = other->VesselnessSigmaMaximum;
+  this->VesselnessNumberOfScales = other->VesselnessNumberOfScales;
+  this->VesselnessThreshold = other->VesselnessThreshold;
+  if (vtkInformation* array = other->GetInputArrayInformation(0))
+  {
+    this->GetInputArrayInformation(0)->Copy(array);
+  }
+  this->Modified();
 }
 
 void vtkVesselTouchCenterlineFilter::PrintSelf(ostream& os, vtkIndent indent)

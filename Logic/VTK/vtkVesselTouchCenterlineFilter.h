@@ -12,13 +12,27 @@
 // ExtractionMessage (empty on success, else the user-facing reason).
 // Bad input (a seed off the vessels, no vessel-like structure, ...): vtkErrorMacro with the reason,
 // the reason in ExtractionMessage and an empty output.
+//
+// Background runs (the GUI's Extract): a host runs a private copy of this filter (CopyParameters)
+// on another thread, on its own shallow copy of the input, with a cancel flag; then it hands the
+// copy's output to the pipeline's filter (SetPrecomputedOutput with the copy's GetLastRunKey()),
+// whose next run returns it without recomputing when its own input and parameters give the same
+// key, and recomputes otherwise: a stale result is never used. Python's UpdatePipeline computes
+// as always.
 #ifndef vtkVesselTouchCenterlineFilter_h
 #define vtkVesselTouchCenterlineFilter_h
 
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h"           // for the precomputed output
 #include "vtkVesselTouchLogicModule.h" // for export macro
 
 #include <string> // for ExtractionMessage
+#ifndef __VTK_WRAP__
+#include <atomic> // for the cancel flag
+#endif
+
+class vtkDataArray;
+class vtkImageData;
 
 class VTKVESSELTOUCHLOGIC_EXPORT vtkVesselTouchCenterlineFilter : public vtkPolyDataAlgorithm
 {
@@ -88,6 +102,29 @@ public:
   vtkSetMacro(VesselnessThreshold, double);
   vtkGetMacro(VesselnessThreshold, double);
 
+  /// Copies every parameter above and the input array selection of `other` (not its input).
+  void CopyParameters(vtkVesselTouchCenterlineFilter* other);
+  /// The last run's key: the input's scalars (the array and its modification time), the input's
+  /// geometry and every parameter. Empty before a run and after an input error.
+  const char* GetLastRunKey() const { return this->LastRunKey.c_str(); }
+  /// `output` (a run of a copy of this filter, whose GetLastRunKey() was `runKey`) is what the
+  /// next run returns if its key is `runKey`; that run consumes it. Null forgets it.
+  void SetPrecomputedOutput(vtkPolyData* output, const char* runKey);
+  /// Whether the last run returned a precomputed output instead of computing.
+  vtkGetMacro(LastRunPrecomputed, bool);
+  /// Whether the last run was cancelled (the cancel flag or AbortExecute): an empty output with
+  /// ExtractionMessage "Cancelled.".
+  vtkGetMacro(LastRunCancelled, bool);
+#ifndef __VTK_WRAP__
+  /// A flag another thread sets to stop the run at its next check point (the stages check it
+  /// every few milliseconds of work). The caller keeps it alive while the filter runs; null
+  /// (default): none. AbortExecute, set on this filter's thread, stops it too.
+  void SetCancelFlag(const std::atomic<bool>* flag)
+  {
+    this->CancelFlag = flag;
+  }
+#endif
+
 protected:
   vtkVesselTouchCenterlineFilter();
   ~vtkVesselTouchCenterlineFilter() override = default;
@@ -100,6 +137,12 @@ protected:
 private:
   vtkVesselTouchCenterlineFilter(const vtkVesselTouchCenterlineFilter&) = delete;
   void operator=(const vtkVesselTouchCenterlineFilter&) = delete;
+
+  std::string RunKey(vtkImageData* input, vtkDataArray* scalars) const;
+  /// Whether the run is to stop (cancel flag or AbortExecute).
+  bool CancelRequested();
+  /// Returns the precomputed output in `output` when `key` is its key (and forgets it).
+  bool UsePrecomputed(const std::string& key, vtkPolyData* output);
 
   bool AutomaticIntensityRange = true;
   double IntensityRangeUsed[2] = { 0.0, 0.0 };
@@ -118,6 +161,14 @@ private:
   double VesselnessSigmaMaximum = 4.0;
   int VesselnessNumberOfScales = 4;
   double VesselnessThreshold = 0.05;
+  std::string LastRunKey;
+  vtkSmartPointer<vtkPolyData> PrecomputedOutput;
+  std::string PrecomputedKey;
+  bool LastRunPrecomputed = false;
+  bool LastRunCancelled = false;
+#ifndef __VTK_WRAP__
+  const std::atomic<bool>* CancelFlag = nullptr;
+#endif
 };
 
 #endif

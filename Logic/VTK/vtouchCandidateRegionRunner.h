@@ -5,6 +5,7 @@
 
 #include "vtouchVesselCandidateRegion.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -15,6 +16,7 @@
 #include "vtkStringArray.h"
 #include "vtkType.h"
 
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +33,9 @@ struct CandidateRegionRequest
   double lower = 0.5, upper = 1e300; ///< used when !automatic
   bool useSeed = false;
   double seed_World_mm[3] = { 0.0, 0.0, 0.0 };
+  /// The stages' progress and cancel (VesselCandidateRegion::Settings::progress): when it
+  /// returns false the run throws vtouch::Cancelled.
+  ProgressCallback progress;
 };
 
 struct CandidateRegionOutcome
@@ -89,6 +94,7 @@ CandidateRegionOutcome runCandidateRegion(vtkImageData* image,
   // The override is the threshold as given: no tube cut (the filters' path before the raw path).
   s.cutNonTubular = request.automatic;
   s.useSeed = request.useSeed;
+  s.progress = request.progress;
   if (request.useSeed)
   {
     s.seed = worldToIndex(image, request.seed_World_mm);
@@ -162,6 +168,18 @@ inline CandidateRegionOutcome runCandidateRegion(vtkImageData* image,
       return runCandidateRegion(image, copy.data(), request);
     }
   }
+}
+
+/// What the filters say when a run was cancelled (ExtractionMessage).
+inline const char* cancelledMessage()
+{
+  return "Cancelled.";
+}
+
+/// Whether a filter's run is to stop: another thread set `flag`, or AbortExecute is on.
+inline bool cancelRequested(const std::atomic<bool>* flag, vtkAlgorithm* algorithm)
+{
+  return (flag && flag->load(std::memory_order_relaxed)) || algorithm->GetAbortExecute();
 }
 
 /// IntensityRangeUsed (lower, upper), IntensityRangeAutomatic (0/1), ExtractionMessage.

@@ -2,6 +2,7 @@
 
 #include "pqVesselTouchCenterlineOverlay.h"
 #include "pqVesselTouchVolumeCheck.h"
+#include "pqVesselTouchVolumeJob.h"
 
 #include "pqApplicationCore.h"
 #include "pqObjectBuilder.h"
@@ -16,12 +17,16 @@
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPVDataInformation.h"
+#include "vtkPolyData.h"
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMViewProxy.h"
 #include "vtkStringArray.h"
+#include "vtkVesselTouchCenterlineFilter.h"
+
+#include <algorithm>
 
 namespace
 {
@@ -109,6 +114,32 @@ bool pqVesselTouchCenterlineExtraction::isShowingCenterline() const
   return this->Overlay->isShowing();
 }
 
+bool pqVesselTouchCenterlineExtraction::Request::sameAs(const Request& other) const
+{
+  return this->volume == other.volume &&
+         std::equal(this->seed_mm, this->seed_mm + 3, other.seed_mm) &&
+         this->automatic == other.automatic &&
+         (this->automatic || (this->lower == other.lower && this->upper == other.upper));
+}
+
+pqVesselTouchCenterlineExtraction::Request pqVesselTouchCenterlineExtraction::Request::of(
+  pqPipelineSource* volume,
+  const double seed_mm[3],
+  bool automatic,
+  double lowerThreshold,
+  double upperThreshold,
+  pqView* view)
+{
+  Request request;
+  request.volume = volume;
+  std::copy(seed_mm, seed_mm + 3, request.seed_mm);
+  request.automatic = automatic;
+  request.lower = lowerThreshold;
+  request.upper = upperThreshold;
+  request.view = view;
+  return request;
+}
+
 pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* volume,
   const double seed_mm[3],
   bool automatic,
@@ -116,7 +147,115 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* v
   double upperThreshold,
   pqView* view)
 {
+  const Request request =
+    Request::of(volume, seed_mm, automatic, lowerThreshold, upperThreshold, view);
+  this->Clock.start();
+  return this->run(request, nullptr, std::string());
+}
+
+bool pqVesselTouchCenterlineExtraction::isRunning() const
+{
+  return this->Job != nullptr;
+}
+
+void pqVesselTouchCenterlineExtraction::cancel(const QString& reason)
+{
+  if (this->Job)
+  {
+    this->Job->cancel(reason);
+  }
+}
+
+bool pqVesselTouchCenterlineExtraction::start(pqPipelineSource* volume,
+  const double seed_mm[3],
+  bool automatic,
+  double lowerThreshold,
+  double upperThreshold,
+  pqView* view)
+{
+  const Request request =
+    Request::of(volume, seed_mm, automatic, lowerThreshold, upperThreshold, view);
+  if (this->Job && request.sameAs(this->Running))
+  {
+    return true; // the same extraction is under way: let it finish
+  }
+  if (this->Job)
+  {
+    this->Job->cancel(); // superseded: it ends soon, its result is dropped
+    this->Job = nullptr;
+  }
+  this->Clock.start();
   this->Result = pqVesselTouchExtractionResult();
+  const QString problem = pqVesselTouchVolumeCheck::problem(volume);
+  if (!problem.isEmpty() || !pqVesselTouchVolumeJob::localImage(volume))
+  {
+    // Remote data (or none): the pipeline's filter, synchronously, as in ParaView.
+    this->run(request, nullptr, std::string());
+    return false;
+  }
+  // A private copy of the filter, with the parameters the volume's filter proxy has (the
+  // defaults for a volume without one) and the request's seed and range.
+  vtkNew<vtkVesselTouchCenterlineFilter> copy;
+  const bool sameVolume =
+    this->Centerline &&
+    vtkSMPropertyHelper(this->Centerline->getProxy(), "Input").GetAsProxy() == volume->getProxy();
+  if (sameVolume)
+  {
+    copy->CopyParameters(vtkVesselTouchCenterlineFilter::SafeDownCast(
+      this->Centerline->getProxy()->GetClientSideObject()));
+  }
+  copy->SetUseSeedPoint(true);
+  copy->SetSeedPoint(request.seed_mm[0], request.seed_mm[1], request.seed_mm[2]);
+  copy->SetAutomaticIntensityRange(automatic);
+  if (!automatic)
+  {
+    copy->SetLowerThreshold(lowerThreshold);
+    copy->SetUpperThreshold(upperThreshold);
+  }
+  auto* job = new pqVesselTouchVolumeJob(volume, copy, copy, this);
+  copy->SetCancelFlag(job->cancelFlag());
+  QObject::connect(
+    job, &pqVesselTouchVolumeJob::progress, this, &pqVesselTouchCenterlineExtraction::progress);
+  QObject::connect(
+    job, &pqVesselTouchVolumeJob::finished, this, [this, job]() { this->onJobFinished(job); });
+  this->Job = job;
+  this->Running = request;
+  Q_EMIT this->progress(0);
+  if (!job->start())
+  {
+    this->Job = nullptr; // the volume's data went away since the check above
+    job->deleteLater();
+    this->run(request, nullptr, std::string());
+    return false;
+  }
+  return true;
+}
+
+void pqVesselTouchCenterlineExtraction::onJobFinished(pqVesselTouchVolumeJob* job)
+{
+  job->deleteLater();
+  if (job != this->Job)
+  {
+    return; // superseded by a later start(): dropped
+  }
+  this->Job = nullptr;
+  auto* copy = vtkVesselTouchCenterlineFilter::SafeDownCast(job->head());
+  if (job->wasCancelled() || !job->volume() || !copy || copy->GetLastRunCancelled())
+  {
+    Q_EMIT this->cancelled(job->volume() ? job->cancelReason() : tr("The volume was deleted."));
+    return;
+  }
+  Request request = this->Running;
+  this->run(request, copy->GetOutput(), copy->GetLastRunKey());
+}
+
+pqPipelineSource* pqVesselTouchCenterlineExtraction::run(const Request& request,
+  vtkPolyData* precomputed,
+  const std::string& key)
+{
+  this->Result = pqVesselTouchExtractionResult();
+  pqPipelineSource* volume = request.volume;
+  pqView* view = request.view;
   const QString problem = pqVesselTouchVolumeCheck::problem(volume);
   if (!problem.isEmpty())
   {
@@ -131,18 +270,24 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* v
   }
   vtkSMProxy* proxy = filter->getProxy();
   vtkSMPropertyHelper(proxy, "UseSeedPoint").Set(1);
-  vtkSMPropertyHelper(proxy, "SeedPoint").Set(seed_mm, 3);
+  vtkSMPropertyHelper(proxy, "SeedPoint").Set(request.seed_mm, 3);
   const bool hasAutomatic = proxy->GetProperty("AutomaticIntensityRange") != nullptr;
   if (hasAutomatic)
   {
-    vtkSMPropertyHelper(proxy, "AutomaticIntensityRange").Set(automatic ? 1 : 0);
+    vtkSMPropertyHelper(proxy, "AutomaticIntensityRange").Set(request.automatic ? 1 : 0);
   }
-  if (!automatic || !hasAutomatic)
+  if (!request.automatic || !hasAutomatic)
   {
-    vtkSMPropertyHelper(proxy, "LowerThreshold").Set(lowerThreshold);
-    vtkSMPropertyHelper(proxy, "UpperThreshold").Set(upperThreshold);
+    vtkSMPropertyHelper(proxy, "LowerThreshold").Set(request.lower);
+    vtkSMPropertyHelper(proxy, "UpperThreshold").Set(request.upper);
   }
   proxy->UpdateVTKObjects();
+  auto* local = vtkVesselTouchCenterlineFilter::SafeDownCast(proxy->GetClientSideObject());
+  if (precomputed && local)
+  {
+    // The update below returns the background run's output if nothing changed since.
+    local->SetPrecomputedOutput(precomputed, key.c_str());
+  }
 
   pqProgressManager* progressManager = pqApplicationCore::instance()->getProgressManager();
   QMetaObject::Connection connection;
@@ -159,6 +304,8 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* v
   filter->setModifiedState(pqProxy::UNMODIFIED);
 
   this->readResult(filter);
+  this->Result.background = local && local->GetLastRunPrecomputed();
+  this->Result.seconds = static_cast<double>(this->Clock.elapsed()) / 1000.0;
   // The view follows: the new centerlines at once, or nothing stale where none were found.
   this->showInView(filter, view, this->Result.paths > 0);
   if (this->Result.paths <= 0)

@@ -3,16 +3,29 @@
 // runs it, reports progress (pqProgressManager's progress while the filter updates) and the
 // result, and shows it at once in the render view: the new centerlines drawn as tubes in a colour
 // that stands out on a grey MIP, or nothing left on screen when the extraction found none.
+//
+// start() runs the same filter on a thread of its own (pqVesselTouchVolumeJob) when the volume's
+// data is in this process, and hands its output to the volume's VesselCenterline proxy, whose
+// update then returns it without recomputing (vtkVesselTouchCenterlineFilter's precomputed
+// output, keyed on the input's voxels and the parameters): state files, Python and the Pipeline
+// Browser see the filter as after extract(). Until then nothing of the pipeline, the view or the
+// session changes.
 #ifndef pqVesselTouchCenterlineExtraction_h
 #define pqVesselTouchCenterlineExtraction_h
 
+#include "pqPipelineSource.h" // for QPointer<pqPipelineSource>
+#include "pqView.h"           // for QPointer<pqView>
+
+#include <QElapsedTimer>
 #include <QObject>
 #include <QPointer>
 #include <QString>
 
-class pqPipelineSource;
+#include <string>
+
 class pqVesselTouchCenterlineOverlay;
-class pqView;
+class pqVesselTouchVolumeJob;
+class vtkPolyData;
 
 struct pqVesselTouchExtractionResult
 {
@@ -24,6 +37,10 @@ struct pqVesselTouchExtractionResult
   bool rangeAutomatic = false;
   /// The filter's own words about the run (field data ExtractionMessage), "" when none.
   QString message;
+  /// The run went on a thread of its own and the pipeline took its output without recomputing.
+  bool background = false;
+  /// Wall time from Extract to the result, s.
+  double seconds = 0.0;
 };
 
 class pqVesselTouchCenterlineExtraction : public QObject
@@ -44,6 +61,22 @@ public:
     double lowerThreshold,
     double upperThreshold,
     pqView* view);
+
+  /// As extract(), on a thread of its own when the volume's data is in this process (the
+  /// builtin session): returns at once, then progress() and finished(), failed() or cancelled()
+  /// on the GUI thread. With remote data (client/server) it runs extract() before it returns.
+  /// A start while a run goes on cancels that run (its result is dropped), unless it asks the
+  /// same of the same volume: then that run goes on. Returns whether a run goes on now.
+  bool start(pqPipelineSource* volume,
+    const double seed_mm[3],
+    bool automatic,
+    double lowerThreshold,
+    double upperThreshold,
+    pqView* view);
+  /// Stops the running start() at its next check point: cancelled() follows; the pipeline, the
+  /// view and the session keep the previous centerline.
+  void cancel(const QString& reason = QString());
+  bool isRunning() const;
 
   /// The filter of the last run, null before.
   pqPipelineSource* centerline() const;
@@ -68,11 +101,36 @@ Q_SIGNALS:
   /// The filter updated: its output has `paths` polylines.
   void finished(pqPipelineSource* centerline, int paths);
   void failed(const QString& reason);
+  /// A start() was cancelled (Cancel, the volume deleted or changed): `reason` says which.
+  void cancelled(const QString& reason);
 
 private:
+  struct Request
+  {
+    QPointer<pqPipelineSource> volume;
+    double seed_mm[3] = { 0.0, 0.0, 0.0 };
+    bool automatic = true;
+    double lower = 0.0, upper = 0.0;
+    QPointer<pqView> view;
+    static Request of(pqPipelineSource* volume,
+      const double seed_mm[3],
+      bool automatic,
+      double lowerThreshold,
+      double upperThreshold,
+      pqView* view);
+    bool sameAs(const Request& other) const;
+  };
+
   pqPipelineSource* filterFor(pqPipelineSource* volume);
+  /// The synchronous run (and the hand-off of a background run's `precomputed` output, whose key
+  /// is `key`): the filter's properties, its update, the result shown.
+  pqPipelineSource* run(const Request& request, vtkPolyData* precomputed, const std::string& key);
+  void onJobFinished(pqVesselTouchVolumeJob* job);
 
   QPointer<pqPipelineSource> Centerline;
+  QPointer<pqVesselTouchVolumeJob> Job;
+  Request Running;
+  QElapsedTimer Clock;
   pqVesselTouchCenterlineOverlay* Overlay = nullptr;
   pqVesselTouchExtractionResult Result;
   Q_DISABLE_COPY(pqVesselTouchCenterlineExtraction)

@@ -22,6 +22,10 @@ constexpr double kColour[3] = { 1.0, 0.55, 0.0 };
 constexpr float kLineWidth_px = 3.0F;
 /// The seed's marker: cyan, apart from the centerlines' orange and the grey MIP.
 constexpr double kSeedColour[3] = { 0.0, 0.9, 1.0 };
+/// Preview's candidate region: magenta, apart from every colour above and the agent's red, blue
+/// and green; translucent, so the MIP's vessels show through it.
+constexpr double kRegionColour[3] = { 1.0, 0.0, 0.85 };
+constexpr double kRegionOpacity = 0.55;
 } // namespace
 
 pqVesselTouchCenterlineOverlay::pqVesselTouchCenterlineOverlay(QObject* parentObject)
@@ -47,6 +51,16 @@ pqVesselTouchCenterlineOverlay::pqVesselTouchCenterlineOverlay(QObject* parentOb
   this->SeedActor->GetProperty()->SetLighting(false); // one flat colour, like the lines
   this->SeedActor->SetVisibility(false);
   this->Overlay->AddActor(this->SeedActor);
+  this->RegionMapper->SetInputData(this->Region);
+  this->RegionMapper->ScalarVisibilityOff();
+  this->RegionActor->SetMapper(this->RegionMapper);
+  vtkProperty* region = this->RegionActor->GetProperty();
+  region->SetColor(kRegionColour[0], kRegionColour[1], kRegionColour[2]);
+  region->SetOpacity(kRegionOpacity);
+  region->SetAmbient(0.6); // mostly flat, with enough shading to read the shape
+  region->SetDiffuse(0.4);
+  this->RegionActor->SetVisibility(false);
+  this->Overlay->AddActor(this->RegionActor);
 }
 
 pqVesselTouchCenterlineOverlay::~pqVesselTouchCenterlineOverlay()
@@ -164,4 +178,31 @@ void pqVesselTouchCenterlineOverlay::showSeed(pqView* view, const double* seed_m
 bool pqVesselTouchCenterlineOverlay::isShowingSeed() const
 {
   return this->Window && this->SeedActor->GetVisibility();
+}
+
+void pqVesselTouchCenterlineOverlay::showRegion(pqView* view, vtkPolyData* surface)
+{
+  if (surface)
+  {
+    this->Region->ShallowCopy(surface);
+  }
+  else
+  {
+    this->Region->Initialize();
+  }
+  this->Region->Modified();
+  this->RegionActor->SetVisibility(this->Region->GetNumberOfCells() > 0);
+  if (view && this->attach(view))
+  {
+    view->render();
+  }
+  else if (this->View)
+  {
+    this->View->render();
+  }
+}
+
+bool pqVesselTouchCenterlineOverlay::isShowingRegion() const
+{
+  return this->Window && this->RegionActor->GetVisibility();
 }

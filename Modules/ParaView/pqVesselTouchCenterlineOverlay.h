@@ -7,7 +7,8 @@
 // the filter's representation in the view (the Pipeline Browser's eye).
 //
 // Attached before the agent overlay (which takes the next layer when tracing starts), the agent
-// is drawn over the centerlines and its cached frames include them.
+// is drawn over the centerlines and its cached frames include them. The same layer shows the
+// seed's marker and Preview's candidate vessel region (a translucent magenta surface).
 #ifndef pqVesselTouchCenterlineOverlay_h
 #define pqVesselTouchCenterlineOverlay_h
 
@@ -43,6 +44,10 @@ public:
   /// (`seed_mm` null). Renders the view.
   void showSeed(pqView* view, const double* seed_mm, double radius_mm);
   bool isShowingSeed() const;
+  /// The candidate vessel region's surface (world mm) over `view`, or none (`surface` null or
+  /// empty). Renders the view.
+  void showRegion(pqView* view, vtkPolyData* surface);
+  bool isShowingRegion() const;
 
 private Q_SLOTS:
   void followRepresentation();
@@ -58,6 +63,9 @@ private:
   vtkNew<vtkSphereSource> SeedSphere;
   vtkNew<vtkPolyDataMapper> SeedMapper;
   vtkNew<vtkActor> SeedActor;
+  vtkNew<vtkPolyData> Region;
+  vtkNew<vtkPolyDataMapper> RegionMapper;
+  vtkNew<vtkActor> RegionActor;
   vtkWeakPointer<vtkRenderWindow> Window;
   QPointer<pqView> View;
   QPointer<pqPipelineSource> Centerline;

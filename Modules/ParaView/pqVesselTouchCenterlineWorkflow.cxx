@@ -3,9 +3,11 @@
 
 #include "pqVesselTouchCenterlineExtraction.h"
 #include "pqVesselTouchCenterlineOverlay.h"
+#include "pqVesselTouchRegionPreview.h"
 #include "pqVesselTouchSeedPicker.h"
 #include "pqVesselTouchVolumeCheck.h"
 #include "pqVesselTouchVolumeChooser.h"
+#include "pqVesselTouchVoxelSample.h"
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
@@ -14,14 +16,10 @@
 #include "pqPipelineSource.h"
 #include "pqRenderView.h"
 
-#include "vtkAlgorithm.h"
-#include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
-#include "vtkImageData.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
 #include "vtkPVDataSetAttributesInformation.h"
-#include "vtkPointData.h"
 #include "vtkPVXMLElement.h"
 #include "vtkSMProperty.h"
 #include "vtkSMProxyLocator.h"
@@ -34,16 +32,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
+
+using pqVesselTouchVoxelSample::neighbourhoodMedian;
+using pqVesselTouchVoxelSample::sampleVoxels;
+using pqVesselTouchVoxelSample::VoxelSample;
+using pqVesselTouchVoxelSample::voxelValue;
 
 namespace
 {
-/// The manual range's starting lower bound: the intensity above which this fraction of the voxels
-/// lie (the histogram's upper tail). Vessels fill a few percent of an angiogram's field of view;
-/// the automatic estimate (the filter's, from the seed's neighbourhood) replaces it after Extract.
-constexpr double kVesselTailFraction = 0.03;
-/// Voxels sampled for the percentiles (evenly strided).
-constexpr vtkIdType kTailSamples = 1 << 18;
 /// A seed is on background unless its value stands this many noise sigmas above the background
 /// level: Rose's criterion for a detectable object (the filter's estimator uses the same rule).
 constexpr double kRoseContrastToNoise = 5.0;
@@ -51,115 +47,6 @@ constexpr double kRoseContrastToNoise = 5.0;
 pqRenderView* activeRenderView()
 {
   return qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView());
-}
-
-/// Order statistics of an evenly strided sample of the volume's voxels: the upper tail's start
-/// and the background (the median: vessels fill far less than half an angiogram) with its noise
-/// (P50 - P15.87, one Gaussian sigma from the lower half, which the vessels do not reach).
-struct VoxelSample
-{
-  bool ok = false;
-  double tail = 0.0;
-  double background = 0.0;
-  double noise = 0.0;
-};
-
-/// The volume's voxels in this process (builtin session), null otherwise.
-vtkImageData* clientImage(pqPipelineSource* volume)
-{
-  auto* proxy = volume ? vtkSMSourceProxy::SafeDownCast(volume->getProxy()) : nullptr;
-  auto* algorithm = proxy ? vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject()) : nullptr;
-  return algorithm ? vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0)) : nullptr;
-}
-
-/// Median of the 3x3x3 voxels around the world point `point_mm` (the seed): a vessel's lumen
-/// around its brightest voxel, or background around a noise spike. False outside the volume.
-bool neighbourhoodMedian(pqPipelineSource* volume, const double point_mm[3], double& median)
-{
-  vtkImageData* image = clientImage(volume);
-  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
-  if (!scalars)
-  {
-    return false;
-  }
-  int centre[3];
-  double pcoords[3];
-  if (!image->ComputeStructuredCoordinates(point_mm, centre, pcoords))
-  {
-    return false;
-  }
-  const int* extent = image->GetExtent();
-  std::vector<double> values;
-  for (int k = -1; k <= 1; ++k)
-  {
-    for (int j = -1; j <= 1; ++j)
-    {
-      for (int i = -1; i <= 1; ++i)
-      {
-        int ijk[3] = {
-          centre[0] + i + extent[0], centre[1] + j + extent[2], centre[2] + k + extent[4]
-        };
-        if (ijk[0] <= extent[1] && ijk[1] <= extent[3] && ijk[2] <= extent[5] &&
-            ijk[0] >= extent[0] && ijk[1] >= extent[2] && ijk[2] >= extent[4])
-        {
-          values.push_back(scalars->GetComponent(image->ComputePointId(ijk), 0));
-        }
-      }
-    }
-  }
-  if (values.empty())
-  {
-    return false;
-  }
-  std::nth_element(
-    values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-  median = values[values.size() / 2];
-  return true;
-}
-
-/// The voxel value nearest the world point `point_mm`; false outside the volume.
-bool voxelValue(pqPipelineSource* volume, const double point_mm[3], double& value)
-{
-  vtkImageData* image = clientImage(volume);
-  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
-  const vtkIdType id = scalars ? image->FindPoint(point_mm[0], point_mm[1], point_mm[2]) : -1;
-  if (id < 0)
-  {
-    return false;
-  }
-  value = scalars->GetComponent(id, 0);
-  return true;
-}
-
-VoxelSample sampleVoxels(pqPipelineSource* volume)
-{
-  VoxelSample result;
-  vtkImageData* image = clientImage(volume);
-  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
-  const vtkIdType count = scalars ? scalars->GetNumberOfTuples() : 0;
-  if (count <= 0)
-  {
-    return result;
-  }
-  const vtkIdType stride = std::max<vtkIdType>(1, count / kTailSamples);
-  std::vector<double> samples;
-  samples.reserve(static_cast<size_t>(count / stride + 1));
-  for (vtkIdType i = 0; i < count; i += stride)
-  {
-    samples.push_back(scalars->GetComponent(i, 0));
-  }
-  const auto at = [&samples](double quantile)
-  {
-    const auto rank =
-      static_cast<std::ptrdiff_t>(quantile * static_cast<double>(samples.size() - 1));
-    std::nth_element(samples.begin(), samples.begin() + rank, samples.end());
-    return samples[static_cast<size_t>(rank)];
-  };
-  result.tail = at(1.0 - kVesselTailFraction);
-  result.background = at(0.5);
-  result.noise = result.background - at(0.1587);
-  result.ok = true;
-  return result;
 }
 } // namespace
 
@@ -170,6 +57,8 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
   , Volumes(new pqVesselTouchVolumeChooser(ui.volumeCombo, this))
   , Picker(new pqVesselTouchSeedPicker(this))
   , Extraction(new pqVesselTouchCenterlineExtraction(this))
+  , Preview(new pqVesselTouchRegionPreview(this->Extraction->overlay(), this))
+  , PreviewToolTip(ui.previewButton->toolTip())
 {
   QObject::connect(this->Volumes,
     &pqVesselTouchVolumeChooser::currentVolumeChanged,
@@ -217,11 +106,52 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
     {
       this->Ui.extractProgress->setValue(0);
       this->setExtractMessage(why, true);
+      this->updateRunState();
     });
   QObject::connect(this->Extraction,
     &pqVesselTouchCenterlineExtraction::finished,
     this,
-    &pqVesselTouchCenterlineWorkflow::centerlineReady);
+    &pqVesselTouchCenterlineWorkflow::onExtracted);
+  QObject::connect(this->Extraction,
+    &pqVesselTouchCenterlineExtraction::cancelled,
+    this,
+    &pqVesselTouchCenterlineWorkflow::onRunCancelled);
+  QObject::connect(this->Ui.cancelButton,
+    &QPushButton::clicked,
+    this,
+    &pqVesselTouchCenterlineWorkflow::cancelRuns);
+  QObject::connect(this->Ui.previewButton,
+    &QPushButton::toggled,
+    this,
+    &pqVesselTouchCenterlineWorkflow::onPreviewToggled);
+  QObject::connect(this->Preview,
+    &pqVesselTouchRegionPreview::progress,
+    this->Ui.extractProgress,
+    &QProgressBar::setValue);
+  QObject::connect(this->Preview,
+    &pqVesselTouchRegionPreview::shown,
+    this,
+    &pqVesselTouchCenterlineWorkflow::onPreviewShown);
+  QObject::connect(this->Preview,
+    &pqVesselTouchRegionPreview::failed,
+    this,
+    [this](const QString& why)
+    {
+      this->hidePreview();
+      this->setExtractMessage(tr("Preview: %1").arg(why), true);
+    });
+  QObject::connect(this->Preview,
+    &pqVesselTouchRegionPreview::cancelled,
+    this,
+    &pqVesselTouchCenterlineWorkflow::onRunCancelled);
+  // A preview shows one seed and range: any change makes it stale.
+  for (QDoubleSpinBox* field : { this->Ui.lowerThreshold, this->Ui.upperThreshold })
+  {
+    QObject::connect(field,
+      QOverload<double>::of(&QDoubleSpinBox::valueChanged),
+      this,
+      &pqVesselTouchCenterlineWorkflow::hidePreview);
+  }
   QObject::connect(pqApplicationCore::instance(),
     &pqApplicationCore::stateLoaded,
     this,
@@ -268,6 +198,11 @@ pqPipelineSource* pqVesselTouchCenterlineWorkflow::centerline() const
 QString pqVesselTouchCenterlineWorkflow::extractMessage() const
 {
   return this->Ui.extractMessage->text();
+}
+
+bool pqVesselTouchCenterlineWorkflow::isRunning() const
+{
+  return this->Extraction->isRunning() || this->Preview->isRunning();
 }
 
 void pqVesselTouchCenterlineWorkflow::showMessage(QLabel* label, const QString& text, bool error)
@@ -334,6 +269,7 @@ void pqVesselTouchCenterlineWorkflow::acceptSeed(const double seed_mm[3], double
   const QSignalBlocker blocker(this->Ui.pickSeedButton);
   this->Ui.pickSeedButton->setChecked(false);
   this->Ui.clearSeedButton->setEnabled(true);
+  this->hidePreview();
   // The marker: a sphere of 1 % of the volume's diagonal (visible, smaller than a vessel).
   double radius_mm = 1.0;
   if (vtkPVDataInformation* data =
@@ -452,6 +388,7 @@ void pqVesselTouchCenterlineWorkflow::adoptFromState()
 
 void pqVesselTouchCenterlineWorkflow::clearSeed()
 {
+  this->hidePreview();
   this->HasSeed = false;
   this->SeedVolume = nullptr;
   this->Ui.seedLabel->setText(tr("No seed"));
@@ -502,6 +439,7 @@ void pqVesselTouchCenterlineWorkflow::setDataRange(pqPipelineSource* volume)
 
 void pqVesselTouchCenterlineWorkflow::onAutomaticToggled(bool automatic)
 {
+  this->hidePreview();
   const bool hasVolume = this->DataRange[0] < this->DataRange[1];
   this->Ui.lowerThreshold->setEnabled(!automatic && hasVolume);
   this->Ui.upperThreshold->setEnabled(!automatic && hasVolume);
@@ -509,6 +447,14 @@ void pqVesselTouchCenterlineWorkflow::onAutomaticToggled(bool automatic)
 
 void pqVesselTouchCenterlineWorkflow::onVolumeChanged(pqPipelineSource* volume)
 {
+  // Runs belong to the volume they started on (a deleted volume takes its run with it).
+  this->Extraction->cancel(volume ? tr("another volume was chosen.") : QString());
+  this->hidePreview();
+  // Preview reads the voxels in this process: not with the data on a remote server.
+  const QString noPreview = pqVesselTouchRegionPreview::unavailableReason(volume);
+  this->Ui.previewButton->setEnabled(!volume || noPreview.isEmpty());
+  this->Ui.previewButton->setToolTip(
+    volume && !noPreview.isEmpty() ? noPreview : this->PreviewToolTip);
   if (volume != this->SeedVolume || !volume)
   {
     this->clearSeed(); // a seed belongs to the volume it was picked in
@@ -551,28 +497,34 @@ void pqVesselTouchCenterlineWorkflow::extract()
       tr("Pick a seed first: press Pick seed, then click a vessel in the view."), true);
     return;
   }
-  this->Ui.extractButton->setEnabled(false);
+  this->hidePreview(); // the centerlines replace it
   this->setExtractMessage(tr("Extracting..."), false);
-  pqPipelineSource* filter = this->Extraction->extract(volume,
+  // In the background when the data is here: the view, the panel and a running session go on
+  // (on the previous centerline) until finished(), failed() or cancelled().
+  this->Extraction->start(volume,
     this->Seed_mm,
     this->automaticRange(),
     this->Ui.lowerThreshold->value(),
     this->Ui.upperThreshold->value(),
     activeRenderView());
-  this->Ui.extractButton->setEnabled(true);
-  const pqVesselTouchExtractionResult& result = this->Extraction->result();
-  if (!filter || result.paths <= 0)
+  if (this->Extraction->isRunning())
   {
-    return; // failed() showed why
+    this->setExtractMessage(
+      tr("Extracting in the background: the view and a running session go on; Cancel stops it."),
+      false);
   }
-  QString text = tr("%n centerline path(s).", "", result.paths);
+  this->updateRunState();
+}
+
+void pqVesselTouchCenterlineWorkflow::onExtracted(pqPipelineSource* centerline, int paths)
+{
+  this->updateRunState();
+  const pqVesselTouchExtractionResult& result = this->Extraction->result();
+  QString text = tr("%n centerline path(s)", "", result.paths);
+  text += tr(" in %1 s.").arg(result.seconds, 0, 'f', 1);
   if (result.rangeKnown)
   {
-    // The range used, in the fields too: the user's starting point for an override.
-    const QSignalBlocker lowerBlocker(this->Ui.lowerThreshold);
-    const QSignalBlocker upperBlocker(this->Ui.upperThreshold);
-    this->Ui.lowerThreshold->setValue(result.rangeUsed[0]);
-    this->Ui.upperThreshold->setValue(result.rangeUsed[1]);
+    this->showRangeUsed(result.rangeUsed);
     text += tr(" Vessel intensity %1 to %2 (%3).")
               .arg(result.rangeUsed[0])
               .arg(result.rangeUsed[1])
@@ -583,4 +535,97 @@ void pqVesselTouchCenterlineWorkflow::extract()
     text += QLatin1Char(' ') + result.message;
   }
   this->setExtractMessage(text, false);
+  Q_EMIT this->centerlineReady(centerline, paths);
+}
+
+void pqVesselTouchCenterlineWorkflow::showRangeUsed(const double range[2])
+{
+  const QSignalBlocker lowerBlocker(this->Ui.lowerThreshold);
+  const QSignalBlocker upperBlocker(this->Ui.upperThreshold);
+  this->Ui.lowerThreshold->setValue(range[0]);
+  this->Ui.upperThreshold->setValue(range[1]);
+}
+
+void pqVesselTouchCenterlineWorkflow::cancelRuns()
+{
+  this->Extraction->cancel(); // cancelled() follows when its thread has stopped
+  if (this->Preview->isRunning())
+  {
+    this->hidePreview(); // stopped for the panel at once
+    this->onRunCancelled(QString());
+  }
+}
+
+void pqVesselTouchCenterlineWorkflow::onRunCancelled(const QString& reason)
+{
+  this->updateRunState();
+  this->Ui.extractProgress->setValue(0);
+  this->setExtractMessage(
+    reason.isEmpty() ? tr("Cancelled.") : tr("Cancelled: %1").arg(reason), !reason.isEmpty());
+}
+
+void pqVesselTouchCenterlineWorkflow::onPreviewToggled(bool on)
+{
+  if (!on)
+  {
+    this->hidePreview();
+    return;
+  }
+  pqPipelineSource* volume = this->Volumes->currentVolume();
+  QString problem = !volume ? tr("Pick a volume first: %1").arg(this->Volumes->problem())
+                    : !this->HasSeed
+                      ? tr("Pick a seed first: press Pick seed, then click a vessel in the view.")
+                      : pqVesselTouchRegionPreview::unavailableReason(volume);
+  if (problem.isEmpty() && !this->Preview->show(volume,
+                             this->Seed_mm,
+                             this->automaticRange(),
+                             this->Ui.lowerThreshold->value(),
+                             this->Ui.upperThreshold->value(),
+                             activeRenderView()))
+  {
+    problem = tr("The preview could not start.");
+  }
+  if (!problem.isEmpty())
+  {
+    const QSignalBlocker blocker(this->Ui.previewButton);
+    this->Ui.previewButton->setChecked(false);
+    this->setExtractMessage(problem, true);
+    return;
+  }
+  this->setExtractMessage(tr("Preview: finding the candidate vessel region..."), false);
+  this->updateRunState();
+}
+
+void pqVesselTouchCenterlineWorkflow::onPreviewShown()
+{
+  this->updateRunState();
+  this->Ui.extractProgress->setValue(100);
+  const pqVesselTouchPreviewResult& result = this->Preview->result();
+  if (result.rangeAutomatic)
+  {
+    this->showRangeUsed(result.rangeUsed); // the estimate, before any extraction
+  }
+  this->setExtractMessage(tr("Preview (magenta): the region Extract would code, %1 voxels; "
+                             "vessel intensity %2 to %3 (%4).")
+                            .arg(result.voxels)
+                            .arg(result.rangeUsed[0])
+                            .arg(result.rangeUsed[1])
+                            .arg(result.rangeAutomatic ? tr("automatic") : tr("yours")),
+    false);
+}
+
+void pqVesselTouchCenterlineWorkflow::hidePreview()
+{
+  if (this->Preview->isRunning() || this->Preview->isShown())
+  {
+    this->Preview->hide();
+  }
+  const QSignalBlocker blocker(this->Ui.previewButton);
+  this->Ui.previewButton->setChecked(false);
+  this->updateRunState();
+}
+
+void pqVesselTouchCenterlineWorkflow::updateRunState()
+{
+  this->Ui.cancelButton->setEnabled(this->isRunning());
 }

@@ -2,8 +2,9 @@
 // one shows beside it), "Pick seed" (a one-shot click in the active render view,
 // pqVesselTouchSeedPicker), the seed shown in mm with a warning when it lies on background, the
 // vessel intensity range (the filter's automatic estimate, or the user's, clamped to the data's
-// range), and "Extract" (pqVesselTouchCenterlineExtraction) with its progress bar and its message
-// beside it. The panel feeds the result to the session.
+// range), "Preview" (pqVesselTouchRegionPreview: the candidate vessel region over the MIP) and
+// "Extract" (pqVesselTouchCenterlineExtraction), both in the background with one progress bar,
+// one "Cancel" and their message beside them. The panel feeds the result to the session.
 #ifndef pqVesselTouchCenterlineWorkflow_h
 #define pqVesselTouchCenterlineWorkflow_h
 
@@ -14,6 +15,7 @@
 class QLabel;
 class pqPipelineSource;
 class pqVesselTouchCenterlineExtraction;
+class pqVesselTouchRegionPreview;
 class pqVesselTouchSeedPicker;
 class pqVesselTouchVolumeChooser;
 
@@ -43,13 +45,19 @@ public:
   pqPipelineSource* centerline() const;
   /// The message beside Extract ("" when none).
   QString extractMessage() const;
+  /// Whether an Extract or a Preview runs now (in the background).
+  bool isRunning() const;
 
 public Q_SLOTS:
   /// What an armed click does, at once at `position` (view widget pixels, top-left origin) in the
   /// active render view and the chosen volume. Returns whether a seed was found.
   bool pickSeedAt(const QPoint& position);
-  /// Runs VesselCenterline at the seed; emits centerlineReady() or shows why not.
+  /// Runs VesselCenterline at the seed, in the background when the data is in this process;
+  /// centerlineReady() follows, or the reason it did not beside Extract.
   void extract();
+  /// Stops a running Extract or Preview ("Cancelled." beside Extract); the previous centerline
+  /// stays in the view and in the session.
+  void cancelRuns();
   /// Forgets the seed and removes its marker from the view.
   void clearSeed();
   /// After a state file was loaded: the panel shows the state's VesselCenterline (its volume,
@@ -66,8 +74,19 @@ private Q_SLOTS:
   void onVolumeChanged(pqPipelineSource* volume);
   void onVolumeDataUpdated(pqPipelineSource* volume);
   void onAutomaticToggled(bool automatic);
+  void onPreviewToggled(bool on);
+  void onExtracted(pqPipelineSource* centerline, int paths);
+  void onPreviewShown();
+  void onRunCancelled(const QString& reason);
 
 private:
+  /// Cancel is enabled while a run goes on; Preview is checked while the region is computed or
+  /// shown.
+  void updateRunState();
+  /// Removes the preview (a new seed, range or volume makes it stale, and Extract replaces it).
+  void hidePreview();
+  /// The range fields show `range` (what a run used: the user's starting point for an override).
+  void showRangeUsed(const double range[2]);
   /// Shows `text` in `label` (red when `error`), hidden when empty.
   static void showMessage(QLabel* label, const QString& text, bool error);
   void setExtractMessage(const QString& text, bool error);
@@ -80,6 +99,9 @@ private:
   pqVesselTouchVolumeChooser* Volumes = nullptr;
   pqVesselTouchSeedPicker* Picker = nullptr;
   pqVesselTouchCenterlineExtraction* Extraction = nullptr;
+  pqVesselTouchRegionPreview* Preview = nullptr;
+  /// Preview's tooltip (replaced by why not, with the data on a remote server).
+  QString PreviewToolTip;
   QPointer<pqPipelineSource> SeedVolume;
   bool HasSeed = false;
   double Seed_mm[3] = { 0.0, 0.0, 0.0 };

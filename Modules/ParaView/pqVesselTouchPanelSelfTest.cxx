@@ -232,6 +232,21 @@ void pqVesselTouchPanelSelfTest::pickAndExtract()
   this->Report.insert("seed", seed);
 
   panel.centerlineWorkflow()->extract();
+  this->reportExtraction();
+}
+
+void pqVesselTouchPanelSelfTest::reportExtraction()
+{
+  if (!this->Panel)
+  {
+    return;
+  }
+  pqVesselTouchDockPanel& panel = *this->Panel;
+  if (panel.centerlineWorkflow()->isRunning())
+  {
+    QTimer::singleShot(kSettleTime_ms / 3, this, &pqVesselTouchPanelSelfTest::reportExtraction);
+    return;
+  }
   QJsonObject extraction;
   pqPipelineSource* centerline = panel.centerlineWorkflow()->centerline();
   extraction.insert("paths",

@@ -35,6 +35,8 @@ private Q_SLOTS:
   void deleteSession();
   void setWidgets();
   void pickAndExtract();
+  /// Extract runs in the background: waits for its end, then reports what it made.
+  void reportExtraction();
   void startSession();
   void changeWhileRunning();
   void stopSession();

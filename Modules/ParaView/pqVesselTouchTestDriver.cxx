@@ -3,8 +3,10 @@
 #include "pqVesselTouchCenterlineWorkflow.h"
 #include "pqVesselTouchDockPanel.h"
 #include "pqVesselTouchOrientationLabels.h"
+#include "pqVesselTouchSeedPicker.h"
 #include "pqVesselTouchSessionBinding.h"
 #include "pqVesselTouchSessionStatus.h"
+#include "pqVesselTouchVolumeJob.h"
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
@@ -26,6 +28,7 @@
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkImageData.h"
+#include "vtkDataArray.h"
 #include "vtkPointData.h"
 #include "vtkSMProperty.h"
 #include "vtkSMProxy.h"
@@ -398,6 +401,27 @@ QString pqVesselTouchTestDriver::run(const QString& line)
                                                   : QString("could not save %1").arg(name);
     }
     pqLoadStateReaction::loadState(name, false, pqActiveObjects::instance().activeServer());
+    return QString();
+  }
+  if (verb == "seed")
+  {
+    auto* picker = this->Panel ? this->Panel->findChild<pqVesselTouchSeedPicker*>() : nullptr;
+    auto* workflow =
+      this->Panel ? this->Panel->findChild<pqVesselTouchCenterlineWorkflow*>() : nullptr;
+    const QStringList words = line.split(' ', Qt::SkipEmptyParts);
+    if (!picker || !workflow || words.size() != 4)
+    {
+      return QString("seed needs X Y Z and the panel's seed picker");
+    }
+    const double point[3] = { words[1].toDouble(), words[2].toDouble(), words[3].toDouble() };
+    vtkImageData* image = pqVesselTouchVolumeJob::localImage(workflow->currentVolume());
+    const vtkIdType id = image ? image->FindPoint(point[0], point[1], point[2]) : -1;
+    if (id < 0 || !image->GetPointData()->GetScalars())
+    {
+      return QString("no voxel of the chosen volume at the seed");
+    }
+    Q_EMIT picker->seedPicked(
+      point[0], point[1], point[2], image->GetPointData()->GetScalars()->GetComponent(id, 0));
     return QString();
   }
   if (verb == "python")

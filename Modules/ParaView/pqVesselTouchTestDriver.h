@@ -12,7 +12,10 @@
 // wait until the action is over, except accept and dismiss, which answer its dialogs) | click
 // BUTTON | check BUTTON|ACTION 0|1 | set WIDGET VALUE | select SOURCE ("" for none) | python SCRIPT
 // (run in the GUI's Python) | capture PNG (the active render view's image) | render | savestate
-// FILE and loadstate FILE (.pvsm or .py, through ParaView's File > Save/Load State reactions).
+// FILE and loadstate FILE (.pvsm or .py, through ParaView's File > Save/Load State reactions) |
+// seed X Y Z (the seed picker reports a pick at world point X Y Z mm of the chosen volume, as a
+// click whose ray's brightest voxel lies there does: for volumes whose brightest voxel under a
+// click is not the vessel wanted).
 #ifndef pqVesselTouchTestDriver_h
 #define pqVesselTouchTestDriver_h
 

@@ -535,6 +535,42 @@ TEST(VoxelCodingSkeletonFilter, AbortRequestStopsWithProcessAborted)
   EXPECT_GE(calls, 3);
 }
 
+TEST(VoxelCodingSkeletonFilter, AbortDuringTheVesselnessStopsItBeforeTheCoder)
+{
+  // The optional whole-volume vesselness (ITK's multi-scale Hessian filters) is half of the run's
+  // progress; an abort requested at its first progress report stops ITK's mini-pipeline there
+  // (issue 16 item 6: Cancel in the GUI), not after it.
+  auto image = tubeImage(96, 48, 48, 24.0, 24.0, 5.0, 5, 90);
+  auto filter = Filter::New();
+  filter->SetInput(image);
+  filter->SetUseVesselness(true);
+  filter->SetVesselnessNumberOfScales(6);
+  double largest = 0.0;
+  int calls = 0;
+  auto onProgress = itk::CStyleCommand::New();
+  struct Context
+  {
+    Filter* filter;
+    double* largest;
+    int* calls;
+  } context{ filter.GetPointer(), &largest, &calls };
+  onProgress->SetClientData(&context);
+  onProgress->SetCallback(
+    [](itk::Object*, const itk::EventObject&, void* data)
+    {
+      auto* c = static_cast<Context*>(data);
+      *c->largest = std::max(*c->largest, static_cast<double>(c->filter->GetProgress()));
+      if (c->filter->GetProgress() > 0.0F && ++*c->calls == 1)
+      {
+        c->filter->SetAbortGenerateData(true);
+      }
+    });
+  filter->AddObserver(itk::ProgressEvent(), onProgress);
+  EXPECT_THROW(filter->Update(), itk::ProcessAborted);
+  EXPECT_GE(calls, 1) << "the vesselness reports progress through the filter";
+  EXPECT_LT(largest, 0.25) << "stopped early in the vesselness (its share is [0, 0.5])";
+}
+
 TEST(VoxelCodingSkeletonFilter, ReportsProgressAndStaysWithinTheMemoryBudget)
 {
   PhantomSpec spec;

@@ -129,6 +129,14 @@ class GuiDriver:
             time.sleep(period)
         return False
 
+    def click_and_wait(self, button, seconds=120):
+        """Clicks a button that starts a background run (Extract, Preview) and waits until the
+        panel says it ended (Cancel disabled again); returns whether it did in time."""
+        self.run("click", button)
+        return self.wait_until(
+            lambda s: not s["widgets"].get("cancelButton", {}).get("enabled", False),
+            seconds=seconds, period=0.2)
+
     def xdotool(self, *args):
         subprocess.run(["xdotool"] + [str(a) for a in args], env=self.env, check=False)
 

@@ -23,22 +23,8 @@ from PIL import Image
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gui_driver import run_test  # noqa: E402
-
-
-def coloured_pixels(png):
-    """Pixels far from grey (the MIP and the view's background are grey or blue-grey)."""
-    rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int)
-    # Orange (the centerlines): the MIP's greys have R = G = B, the view's background is grey
-    # or blue-grey, the orientation axes are pure red, green and blue.
-    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
-    return int(numpy.count_nonzero((r > 170) & (g > 80) & (g < 200) & (b < 90) & (r - g > 40)))
-
-
-def seed_pixels(png):
-    """The seed marker's cyan."""
-    rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int)
-    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
-    return int(numpy.count_nonzero((r < 60) & (g > 60) & (b > 60) & (numpy.abs(g - b) < 40)))
+from gui_pixels import cyan_pixels as seed_pixels  # noqa: E402
+from gui_pixels import orange_pixels as coloured_pixels  # noqa: E402
 
 
 def agent_pixels(png):
@@ -129,7 +115,7 @@ def body(gui, check):
     marked = gui.capture("seed_marker.png")
     count = seed_pixels(marked) if marked else 0
     check(count > 10, "the seed is marked in the view (%d pixels)" % count)
-    gui.run("click", "extractButton")
+    check(gui.click_and_wait("extractButton"), "Extract ends")
     text = gui.widget("extractMessage").get("text", "")
     check("centerline path" in text, "Extract reports the paths beside it (%r)" % text)
     check(gui.widget("extractProgress").get("value") == 100, "progress is full after success")
@@ -159,7 +145,7 @@ def body(gui, check):
     gui.run("check", "automaticRange", 0)
     gui.run("set", "lowerThreshold", upper["maximum"])
     gui.run("set", "upperThreshold", upper["maximum"])
-    gui.run("click", "extractButton")
+    check(gui.click_and_wait("extractButton"), "the failing Extract ends")
     message = gui.widget("extractMessage")
     check(message.get("visible") and "centerline path" not in message.get("text", ""),
           "a failed Extract says why beside Extract (%r)" % message.get("text"))

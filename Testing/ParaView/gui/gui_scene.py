@@ -6,6 +6,8 @@
             VESSELTOUCH_SCENE_PNG names a file, that PNG opened by ParaView's reader ("Png")
   tracing   the phantom, and vesseltouch.logic() on its analytic centerline with the pointer
             device (the mouse), started
+  angiogram a raw-angiogram VesselPhantom ("Angio": a random tree, noise, plates and blobs) of
+            VESSELTOUCH_SCENE_SIZE^3 voxels (default 256) shown as a MIP, active; no "Phantom"
 Otherwise no session is created: the panel does what the user asks. Writes "ok" (or the error) to
 $VESSELTOUCH_DONE_FLAG.
 """
@@ -21,6 +23,15 @@ def main():
     scene = os.environ.get("VESSELTOUCH_SCENE", "phantom")
     view = simple.GetActiveViewOrCreate("RenderView")
     if scene == "empty":
+        return
+    if scene == "angiogram":
+        size = int(os.environ.get("VESSELTOUCH_SCENE_SIZE", "256"))
+        angio = simple.VesselPhantom(registrationName="Angio", Shape="Raw angiogram",
+                                     Dimensions=[size] * 3, Seed=1, NoiseStandardDeviation=50)
+        vesseltouch.ShowAsMIP(angio, view)
+        view.OrientationAxesVisibility = 0
+        simple.SetActiveSource(angio)
+        simple.Render(view)
         return
     phantom = simple.VesselPhantom(registrationName="Phantom", Shape="Tree",
                                    Dimensions=[64, 64, 64])

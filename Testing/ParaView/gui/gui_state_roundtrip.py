@@ -145,7 +145,7 @@ def body(gui, check):
                 rect[1] + int(row * rect[3] / grey.shape[0]))
     gui.xdotool("click", 1)
     gui.wait_until(lambda s: "mm" in s["widgets"]["seedLabel"]["text"], seconds=5)
-    gui.run("click", "extractButton")
+    gui.click_and_wait("extractButton")
     gui.run("click", "startButton")
     gui.wait_until(lambda s: s["session"]["running"], seconds=10)
     hidden_session_checks(gui, check, "before saving")

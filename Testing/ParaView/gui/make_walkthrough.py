@@ -69,10 +69,23 @@ def main():
         gui.xdotool("click", 1)
         gui.wait_until(lambda s: "mm" in s["widgets"]["seedLabel"]["text"], seconds=5)
         shot(gui, out, "03_seed.png")
+        check(gui.click_and_wait("previewButton"), "the preview ends")
+        check("Preview" in gui.widget("extractMessage").get("text", ""),
+              "preview: %r" % gui.widget("extractMessage").get("text"))
+        shot(gui, out, "04_preview.png")
+        # The panel while Extract runs in the background (its progress bar and Cancel).
         gui.run("click", "extractButton")
+        if check(gui.widget("cancelButton").get("enabled"), "Extract runs in the background"):
+            gui.run("render")  # the view without the preview, as the next idle render draws it
+            time.sleep(0.3)  # a progress report or two
+            path = os.path.join(out, "05_extracting.png")
+            gui.screenshot(path)
+            Image.open(path).convert("RGB").crop((0, 0, 1280, 1000)).save(path, optimize=True)
+            print("wrote", path, flush=True)
+        gui.wait_until(lambda s: not s["widgets"]["cancelButton"]["enabled"], seconds=120)
         check("centerline path" in gui.widget("extractMessage").get("text", ""),
               "extraction: %r" % gui.widget("extractMessage").get("text"))
-        shot(gui, out, "04_extract.png")
+        shot(gui, out, "06_extract.png")
         gui.run("set", "deviceComboBox", "Mouse (pseudo-haptics)")
         gui.run("click", "startButton")
         gui.wait_until(lambda s: s["session"]["running"], seconds=10)
@@ -81,7 +94,7 @@ def main():
         for d in range(0, 80, 4):
             gui.xdotool("mousemove", x + d, y + d // 3)
             time.sleep(0.05)
-        shot(gui, out, "05_tracing.png")
+        shot(gui, out, "07_tracing.png")
         gui.run("click", "stopButton")
     finally:
         gui.finish()
