@@ -11,7 +11,8 @@ pointer device, "Trace with mouse" on). Two phases of the same length, each on a
 restarted session (its loop statistics start at zero): "idle" (the mouse traces slowly) and
 "drag" (middle-button pans, right-button zooms and Ctrl + left rotations, back to back, through
 the real X server). Writes flat keys gui.<phase>.{p50,p99,max}_period_error_us, overruns,
-achieved_hz, ticks, plus the camera pushes the agent display made during the drag.
+achieved_hz, ticks, plus the camera pushes the agent display made during the drag and the view-model builds they
+caused in the session (one per push, issue 18 item 2).
 """
 
 import argparse
@@ -63,12 +64,14 @@ def phase(gui, seconds, drag):
     return session, elapsed
 
 
-def agent_pushes(gui):
+def agent_counts(gui):
+    """The agent display's camera pushes and the session's view-model builds so far."""
     try:
         with open(gui.env["VESSELTOUCH_AGENT_REPORT"]) as f:
-            return json.load(f).get("camera_pushes", 0)
+            report = json.load(f)
+        return report.get("camera_pushes", 0), report.get("view_model_builds", 0)
     except (OSError, ValueError):
-        return 0
+        return 0, 0
 
 
 def main():
@@ -92,7 +95,7 @@ def main():
             gui.run("check", "actionVesselTouchTraceWithMouse", 1)
             time.sleep(1.0)
             for name, drag in (("idle", False), ("drag", True)):
-                pushes = agent_pushes(gui)
+                pushes, builds = agent_counts(gui)
                 session, elapsed = phase(gui, args.seconds, drag)
                 check(session.get("running") and session.get("fault") == 0,
                       "the session ran through the %s phase (%r)" % (name, session))
@@ -108,8 +111,12 @@ def main():
                         session.get("realtime_scheduling"))),
                 })
                 if drag:
-                    time.sleep(0.6)
-                    results["gui.drag.camera_pushes"] = agent_pushes(gui) - pushes
+                    time.sleep(0.6)  # the report is written about twice a second
+                    pushes_after, builds_after = agent_counts(gui)
+                    results["gui.drag.camera_pushes"] = pushes_after - pushes
+                    results["gui.drag.view_model_builds"] = builds_after - builds
+                    check(results["gui.drag.camera_pushes"] > 0,
+                          "the drags moved the camera and it was pushed to the session")
     finally:
         gui.finish()
     with open(args.json, "w") as f:

@@ -117,8 +117,13 @@ try:
                          ("mousemove", x + 40, y + 10), ("mouseup", 1)):
                 run.xdotool(*step)
                 time.sleep(0.2)
-            time.sleep(3.0)
-            dragged = run.report()
+            # No fixed wait: the report (written about twice a second) shows the pushed camera,
+            # the MIP rendered again and agent-only frames over it, within a minute.
+            dragged = run.wait_for_report(
+                lambda r: (r["camera_pushes"] > before["camera_pushes"]
+                           and r["full_renders"] > before["full_renders"]
+                           and r["cached_frames"] > before["cached_frames"]), seconds=60)
+            dragged = dragged or run.report()
         final = run.report()
 finally:
     artifacts = run.finish()

@@ -56,13 +56,21 @@ try:
     if os.path.exists(env["VESSELTOUCH_DONE_FLAG"]):
         status = open(env["VESSELTOUCH_DONE_FLAG"]).read()
         check(status.startswith("ok"), "the start-up script succeeded: " + status)
-    time.sleep(2)  # let the panel and the view settle
-    if shutil.which("xdotool"):
-        subprocess.run(["xdotool", "key", "Escape"], env=env, check=False)  # any stray dialog
-        time.sleep(0.5)
+    # No fixed wait: the panel has written its report and the window is drawn (a screenshot that
+    # is not blank), however long a loaded machine takes, up to a minute.
     root_png = os.path.join(work, "window.png")
-    grab = subprocess.run(["import", "-window", "root", root_png], env=env, check=False)
-    check(grab.returncode == 0 and os.path.exists(root_png), "screenshot of the whole window")
+    grabbed = False
+    deadline = time.time() + 60
+    while time.time() < deadline and app.poll() is None:
+        if shutil.which("xdotool"):
+            subprocess.run(["xdotool", "key", "Escape"], env=env, check=False)  # stray dialog
+        grab = subprocess.run(["import", "-window", "root", root_png], env=env, check=False)
+        grabbed = grab.returncode == 0 and os.path.exists(root_png)
+        if (grabbed and os.path.exists(env["VESSELTOUCH_GUI_REPORT"])
+                and float(matplotlib.image.imread(root_png).std()) > 0.05):
+            break
+        time.sleep(0.5)
+    check(grabbed, "screenshot of the whole window")
     check(app.poll() is None, "ParaView is still running after the scene was set up")
 finally:
     app.send_signal(signal.SIGTERM)
