@@ -64,14 +64,25 @@ def phase(gui, seconds, drag):
     return session, elapsed
 
 
-def agent_counts(gui):
-    """The agent display's camera pushes and the session's view-model builds so far."""
+def agent_report(gui):
     try:
         with open(gui.env["VESSELTOUCH_AGENT_REPORT"]) as f:
-            report = json.load(f)
-        return report.get("camera_pushes", 0), report.get("view_model_builds", 0)
+            return json.load(f)
     except (OSError, ValueError):
-        return 0, 0
+        return {}
+
+
+def agent_counts(gui, seconds=20.0):
+    """The agent display's camera pushes and the session's view-model builds up to now: from the
+    first report written after this call (the GUI thread rewrites it about twice a second, less
+    often on a loaded machine; a stale one read too early made the drag's pushes look like 0)."""
+    seen = agent_report(gui).get("sequence", -1)
+    deadline = time.time() + seconds
+    report = agent_report(gui)
+    while report.get("sequence", -1) <= seen + 1 and time.time() < deadline:
+        time.sleep(0.1)
+        report = agent_report(gui)
+    return report.get("camera_pushes", 0), report.get("view_model_builds", 0)
 
 
 def main():
@@ -111,7 +122,6 @@ def main():
                         session.get("realtime_scheduling"))),
                 })
                 if drag:
-                    time.sleep(0.6)  # the report is written about twice a second
                     pushes_after, builds_after = agent_counts(gui)
                     results["gui.drag.camera_pushes"] = pushes_after - pushes
                     results["gui.drag.view_model_builds"] = builds_after - builds
