@@ -9,24 +9,9 @@ using namespace vtouch;
 using namespace vtouch::skeleton;
 using namespace vtouch::skeleton::test;
 
-/// A Y of capsules (radius 3 mm): a trunk along y, two branches from (20, 24, 10).
-SparseVesselMask yShape()
-{
-  return makeMask({ 40, 40, 20 },
-    [](const Point_mm& p)
-    {
-      return distanceToSegment(p, { 20, 4, 10 }, { 20, 22, 10 }) <= 3.0 ||
-             distanceToSegment(p, { 20, 22, 10 }, { 9, 34, 10 }) <= 3.0 ||
-             distanceToSegment(p, { 20, 22, 10 }, { 31, 34, 10 }) <= 3.0;
-    });
-}
-
 TEST(SkeletonClusterStage, TubeClustersPartitionTheVesselIntoBands)
 {
-  const SparseVesselMask mask = makeMask({ 30, 13, 13 },
-    [](const Point_mm& p) {
-      return p[0] >= 2 && p[0] <= 27 && (p[1] - 6) * (p[1] - 6) + (p[2] - 6) * (p[2] - 6) <= 9.0;
-    });
+  const SparseVesselMask mask = flatTube({ 30, 13, 13 }, 2, 27, 6, 6, 3.0);
   Pipeline run(mask);
   run.code(run.lin(2, 6, 6));
   run.cluster();
@@ -78,8 +63,8 @@ TEST(SkeletonClusterStage, YHasTipsAtBothBranchEndsOnly)
       continue;
     }
     const Point_mm m = cluster.centroid();
-    const bool atLeft = distance(m, { 9, 34, 10 }) <= 4.5;
-    const bool atRight = distance(m, { 31, 34, 10 }) <= 4.5;
+    const bool atLeft = distance(m, kYLeftEnd) <= 4.5;
+    const bool atRight = distance(m, kYRightEnd) <= 4.5;
     EXPECT_TRUE(atLeft || atRight) << m[0] << ", " << m[1] << ", " << m[2];
     left += atLeft ? 1 : 0;
     right += atRight ? 1 : 0;

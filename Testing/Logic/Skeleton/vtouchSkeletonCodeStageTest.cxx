@@ -14,12 +14,7 @@ using namespace vtouch::skeleton::test;
 /// A flat-ended tube along x, voxels 2..37, radius 4.2 mm around (j, k) = (8, 8).
 SparseVesselMask straightTube()
 {
-  return makeMask({ 40, 17, 17 },
-    [](const Point_mm& p)
-    {
-      return p[0] >= 2 && p[0] <= 37 &&
-             (p[1] - 8) * (p[1] - 8) + (p[2] - 8) * (p[2] - 8) <= 4.2 * 4.2;
-    });
+  return flatTube({ 40, 17, 17 }, 2, 37, 8, 8, 4.2);
 }
 
 TEST(SkeletonBoundaryCodeStage, EqualsTheBruteForceDistanceToTheBackgroundOnATube)

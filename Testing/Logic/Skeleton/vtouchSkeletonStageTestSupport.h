@@ -59,6 +59,42 @@ inline double distanceToSegment(const Point_mm& p, const Point_mm& a, const Poin
   return distance(p, { a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2] });
 }
 
+/// A flat-ended tube along x: voxels x0..x1, radius `radius_mm` around (j, k) = (cy, cz).
+inline SparseVesselMask flatTube(const Dims& d,
+  double x0,
+  double x1,
+  double cy,
+  double cz,
+  double radius_mm)
+{
+  return makeMask(d,
+    [&](const Point_mm& p)
+    {
+      return p[0] >= x0 && p[0] <= x1 &&
+             (p[1] - cy) * (p[1] - cy) + (p[2] - cz) * (p[2] - cz) <= radius_mm * radius_mm;
+    });
+}
+
+/// The Y of the tests: capsules of radius 3 mm in a 40 x 40 x 20 volume, a trunk along y from
+/// kYTrunkEnd to kYFork and two branches from the fork to kYLeftEnd and kYRightEnd.
+const Point_mm kYFork{ 20, 22, 10 };
+const Point_mm kYTrunkEnd{ 20, 4, 10 };
+const Point_mm kYLeftEnd{ 9, 34, 10 };
+const Point_mm kYRightEnd{ 31, 34, 10 };
+
+/// Distance (mm) from `p` to the Y's axes.
+inline double distanceToY(const Point_mm& p)
+{
+  return std::min({ distanceToSegment(p, kYTrunkEnd, kYFork),
+    distanceToSegment(p, kYFork, kYLeftEnd),
+    distanceToSegment(p, kYFork, kYRightEnd) });
+}
+
+inline SparseVesselMask yShape()
+{
+  return makeMask({ 40, 40, 20 }, [](const Point_mm& p) { return distanceToY(p) <= 3.0; });
+}
+
 /// The stages of one component run by hand, in VoxelCoder's order, on 1 mm voxels.
 struct Pipeline
 {

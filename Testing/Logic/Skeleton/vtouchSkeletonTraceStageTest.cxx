@@ -9,22 +9,9 @@ using namespace vtouch;
 using namespace vtouch::skeleton;
 using namespace vtouch::skeleton::test;
 
-const Point_mm kFork{ 20, 22, 10 };
-const Point_mm kTrunkEnd{ 20, 4, 10 };
-const Point_mm kLeftEnd{ 9, 34, 10 };
-const Point_mm kRightEnd{ 31, 34, 10 };
-
-double distanceToY(const Point_mm& p)
-{
-  return std::min({ distanceToSegment(p, kTrunkEnd, kFork),
-    distanceToSegment(p, kFork, kLeftEnd),
-    distanceToSegment(p, kFork, kRightEnd) });
-}
-
 TEST(SkeletonTraceStage, YGivesAParentPathAndOneBranchJoinedAtTheFork)
 {
-  const SparseVesselMask mask =
-    makeMask({ 40, 40, 20 }, [](const Point_mm& p) { return distanceToY(p) <= 3.0; });
+  const SparseVesselMask mask = yShape();
   Pipeline run(mask);
   run.code(run.lin(20, 1, 10)); // the trunk cap's apex
   run.cluster();
@@ -38,7 +25,7 @@ TEST(SkeletonTraceStage, YGivesAParentPathAndOneBranchJoinedAtTheFork)
   EXPECT_EQ(s.paths[0].headJunction, -1);
   // The branch starts at its parent's point, near the fork.
   EXPECT_EQ(s.paths[1].center_mm.front(), s.paths[0].center_mm[s.junctions[0].parentPoint]);
-  EXPECT_LT(distance(s.paths[1].center_mm.front(), kFork), 3.0);
+  EXPECT_LT(distance(s.paths[1].center_mm.front(), kYFork), 3.0);
   // The path runs from the root to a tip (the end caps are trimmed later, by EndStage).
   EXPECT_LT(distance(s.paths[0].center_mm.front(), { 20, 1, 10 }), 1.5);
   for (const RawSkeletonPath& path : s.paths)
@@ -50,7 +37,7 @@ TEST(SkeletonTraceStage, YGivesAParentPathAndOneBranchJoinedAtTheFork)
       // On the axes (within 1.25 mm of a radius of 3 mm), or on their extension into the end caps.
       const Point_mm& c = path.center_mm[i];
       const double cap =
-        std::min({ distance(c, kTrunkEnd), distance(c, kLeftEnd), distance(c, kRightEnd) });
+        std::min({ distance(c, kYTrunkEnd), distance(c, kYLeftEnd), distance(c, kYRightEnd) });
       EXPECT_LE(distanceToY(c), cap < 3.5 ? 3.0 : 1.25) << i;
       EXPECT_LE(path.radius_mm[i], 4.5);
     }
