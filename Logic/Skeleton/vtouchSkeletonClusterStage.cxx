@@ -33,7 +33,7 @@ std::uint32_t ClusterStage::find(std::uint32_t r)
 
 void ClusterStage::build()
 {
-  const StageTimer timer{ meter, "graph.clusters" };
+  const StageTimer timer{ meter, "clusters" };
   // The passes visit each voxel's neighbourhood: in scan (rank) order the arrays are
   // read nearly sequentially, in SS order every access is a cache miss (2-3x slower). Scan order
   // needs the whole mask to be this component (the usual case); otherwise the SS order is kept.
