@@ -10,6 +10,17 @@ namespace skeleton
 namespace
 {
 constexpr std::uint32_t kLabelled = ClusterGraph::kLabelled;
+
+/// The root of `r`'s set in the union-find forest `parent` (path halving).
+std::uint32_t find(std::uint32_t* parent, std::uint32_t r)
+{
+  while (parent[r] != r)
+  {
+    parent[r] = parent[parent[r]];
+    r = parent[r];
+  }
+  return r;
+}
 } // namespace
 
 ClusterStage::ClusterStage(const VoxelGrid& g, RunMeter& m, const VoxelCodes& c, ClusterGraph& out)
@@ -20,20 +31,17 @@ ClusterStage::ClusterStage(const VoxelGrid& g, RunMeter& m, const VoxelCodes& c,
 {
 }
 
-std::uint32_t ClusterStage::find(std::uint32_t r)
-{
-  std::vector<std::uint32_t>& parent = graph.label;
-  while (parent[r] != r)
-  {
-    parent[r] = parent[parent[r]];
-    r = parent[r];
-  }
-  return r;
-}
-
 void ClusterStage::build()
 {
   const StageTimer timer{ meter, "clusters" };
+  // The passes' arrays, held here (their size does not change while they run).
+  std::uint32_t* const aux = graph.label.data(); // union-find parents, then labels
+  const float* const ss = codes.ss.data();
+  const float* const bs = codes.bs.data();
+  std::vector<Cluster>& clusters = graph.clusters;
+  const float inverseBandWidth = grid.inverseBandWidth;
+  const auto band = [&](std::uint32_t r)
+  { return static_cast<std::uint32_t>(ss[r] * inverseBandWidth); };
   // The passes visit each voxel's neighbourhood: in scan (rank) order the arrays are
   // read nearly sequentially, in SS order every access is a cache miss (2-3x slower). Scan order
   // needs the whole mask to be this component (the usual case); otherwise the SS order is kept.
@@ -60,7 +68,7 @@ void ClusterStage::build()
     for (std::uint32_t lin : codes.order)
     {
       const std::uint32_t r = grid.mask.rank(lin);
-      graph.label[r] = r;
+      aux[r] = r;
     }
   }
   std::uint32_t visited = 0;
@@ -73,10 +81,10 @@ void ClusterStage::build()
       }
       if (whole)
       {
-        graph.label[r] = r;
+        aux[r] = r;
       }
       const std::uint32_t b = band(r);
-      std::uint32_t rootR = find(r);
+      std::uint32_t rootR = find(aux, r);
       grid.forNeighbours(
         lin,
         [&](std::uint64_t, int, std::uint32_t ru)
@@ -84,10 +92,10 @@ void ClusterStage::build()
           if (band(ru) == b)
           {
             // Only this voxel's set changes here: its root is tracked.
-            const std::uint32_t y = find(ru);
+            const std::uint32_t y = find(aux, ru);
             if (y != rootR)
             {
-              graph.label[std::max(rootR, y)] = std::min(rootR, y);
+              aux[std::max(rootR, y)] = std::min(rootR, y);
               rootR = std::min(rootR, y);
             }
           }
@@ -95,7 +103,7 @@ void ClusterStage::build()
         grid.kHalf);
     });
   // The roots become the clusters, numbered in SS order (the order of the tips' tie-breaks).
-  graph.clusters.clear();
+  clusters.clear();
   visited = 0;
   for (std::uint32_t lin : codes.order)
   {
@@ -104,28 +112,28 @@ void ClusterStage::build()
       meter.checkpoint();
     }
     const std::uint32_t r = grid.mask.rank(lin);
-    if (graph.label[r] == r)
+    if (aux[r] == r)
     {
-      graph.label[r] = kLabelled | static_cast<std::uint32_t>(graph.clusters.size());
-      graph.clusters.emplace_back();
-      graph.clusters.back().band = band(r);
+      aux[r] = kLabelled | static_cast<std::uint32_t>(clusters.size());
+      clusters.emplace_back();
+      clusters.back().band = band(r);
     }
   }
   // Label of each voxel (its set's cluster) and the cluster sums.
   const auto resolve = [&](std::uint32_t lin, std::uint32_t r)
   {
-    if (!(graph.label[r] & kLabelled))
+    if (!(aux[r] & kLabelled))
     {
       // Union parents precede their children in rank order, so in scan order the parent is
       // already labelled; in SS order, follow the chain.
-      std::uint32_t x = graph.label[r];
-      while (!(graph.label[x] & kLabelled))
+      std::uint32_t x = aux[r];
+      while (!(aux[x] & kLabelled))
       {
-        x = graph.label[x];
+        x = aux[x];
       }
-      graph.label[r] = graph.label[x];
+      aux[r] = aux[x];
     }
-    Cluster& c = graph.clusters[graph.label[r] & ~kLabelled];
+    Cluster& c = clusters[aux[r] & ~kLabelled];
     std::int64_t x[3];
     grid.coords(lin, x);
     ++c.count;
@@ -136,34 +144,34 @@ void ClusterStage::build()
       c.sum[a] += static_cast<double>(x[a]) * grid.sp[a];
     }
     // Ties of BS go to the lower SS code, whatever the visiting order.
-    if (c.count == 1 || codes.bs[r] > c.maxBs ||
-        (codes.bs[r] == c.maxBs && codes.ss[r] < codes.ss[grid.mask.rank(c.bestVoxel)]))
+    if (c.count == 1 || bs[r] > c.maxBs ||
+        (bs[r] == c.maxBs && ss[r] < ss[grid.mask.rank(c.bestVoxel)]))
     {
-      c.maxBs = codes.bs[r];
+      c.maxBs = bs[r];
       c.bestVoxel = lin;
     }
   };
   // Cluster graph: clusters of different bands that touch.
   const auto link = [&](std::uint32_t lin, std::uint32_t r)
   {
-    const std::uint32_t c = graph.label[r] & ~kLabelled;
+    const std::uint32_t c = aux[r] & ~kLabelled;
     // Most neighbours of another band belong to one or two clusters: skip repeats cheaply.
     std::uint32_t linked[2] = { c, c };
     grid.forNeighbours(
       lin,
       [&](std::uint64_t, int, std::uint32_t ru)
       {
-        const std::uint32_t cu = graph.label[ru] & ~kLabelled;
-        if (cu == linked[0] || cu == linked[1] || graph.clusters[cu].band == graph.clusters[c].band)
+        const std::uint32_t cu = aux[ru] & ~kLabelled;
+        if (cu == linked[0] || cu == linked[1] || clusters[cu].band == clusters[c].band)
         {
           return;
         }
         linked[1] = linked[0];
         linked[0] = cu;
-        const std::uint32_t hi = graph.clusters[cu].band > graph.clusters[c].band ? cu : c;
+        const std::uint32_t hi = clusters[cu].band > clusters[c].band ? cu : c;
         const std::uint32_t lo = hi == c ? cu : c;
-        ClusterGraph::addUnique(graph.clusters[hi].lower, lo);
-        ClusterGraph::addUnique(graph.clusters[lo].higher, hi);
+        ClusterGraph::addUnique(clusters[hi].lower, lo);
+        ClusterGraph::addUnique(clusters[lo].higher, hi);
       },
       grid.kHalf);
     meter.tick();
@@ -184,7 +192,7 @@ void ClusterStage::build()
     visit(link);
   }
   // Neighbour lists in cluster (SS) order, independent of the visiting order.
-  for (Cluster& c : graph.clusters)
+  for (Cluster& c : clusters)
   {
     std::sort(c.lower.begin(), c.lower.end());
     std::sort(c.higher.begin(), c.higher.end());
@@ -193,45 +201,45 @@ void ClusterStage::build()
 
 std::optional<std::uint32_t> ClusterStage::thickerRoot() const
 {
+  const std::vector<Cluster>& clusters = graph.clusters;
   // Thickness of an end: the largest BS code within a few bands of it (the end cluster itself
   // is a cap whose BS is small).
   constexpr std::uint32_t kBands = 8;
   const auto thickness = [&](std::uint32_t c)
   {
-    float t = graph.clusters[c].maxBs;
-    for (std::uint32_t k = 0; k < kBands && !graph.clusters[c].lower.empty(); ++k)
+    float t = clusters[c].maxBs;
+    for (std::uint32_t k = 0; k < kBands && !clusters[c].lower.empty(); ++k)
     {
-      std::uint32_t next = graph.clusters[c].lower.front();
-      for (std::uint32_t l : graph.clusters[c].lower)
+      std::uint32_t next = clusters[c].lower.front();
+      for (std::uint32_t l : clusters[c].lower)
       {
-        next = graph.clusters[l].count > graph.clusters[next].count ? l : next;
+        next = clusters[l].count > clusters[next].count ? l : next;
       }
       c = next;
-      t = std::max(t, graph.clusters[c].maxBs);
+      t = std::max(t, clusters[c].maxBs);
     }
     return t;
   };
   // The root's end measured the same way, walking up from the root's cluster (the first in SS
   // order): a ball of kBands around a rounded cap's apex would see only the cap, and a vessel of
   // one calibre (a helix) would then always be re-rooted, at the cost of a second SS code.
-  float rootBs = graph.clusters.empty() ? 0.0F : graph.clusters[0].maxBs;
-  for (std::uint32_t c = 0, k = 0;
-       k < kBands && c < graph.clusters.size() && !graph.clusters[c].higher.empty();
+  float rootBs = clusters.empty() ? 0.0F : clusters[0].maxBs;
+  for (std::uint32_t c = 0, k = 0; k < kBands && c < clusters.size() && !clusters[c].higher.empty();
        ++k)
   {
-    std::uint32_t next = graph.clusters[c].higher.front();
-    for (std::uint32_t h : graph.clusters[c].higher)
+    std::uint32_t next = clusters[c].higher.front();
+    for (std::uint32_t h : clusters[c].higher)
     {
-      next = graph.clusters[h].count > graph.clusters[next].count ? h : next;
+      next = clusters[h].count > clusters[next].count ? h : next;
     }
     c = next;
-    rootBs = std::max(rootBs, graph.clusters[c].maxBs);
+    rootBs = std::max(rootBs, clusters[c].maxBs);
   }
   std::int64_t best = -1;
   float bestBs = 0.0F;
-  for (std::uint32_t c = 0; c < graph.clusters.size(); ++c)
+  for (std::uint32_t c = 0; c < clusters.size(); ++c)
   {
-    if (graph.clusters[c].band > kBands && graph.clusters[c].higher.empty())
+    if (clusters[c].band > kBands && clusters[c].higher.empty())
     {
       const float t = thickness(c);
       if (best < 0 || t > bestBs)
@@ -246,7 +254,7 @@ std::optional<std::uint32_t> ClusterStage::thickerRoot() const
     return std::nullopt;
   }
   // One root voxel at the centre of the end cap: every trace then converges to one point.
-  return tipStart(grid, graph.clusters[best]);
+  return tipStart(grid, clusters[best]);
 }
 
 std::uint32_t ClusterStage::tipStart(const VoxelGrid& grid, const Cluster& c)

@@ -44,12 +44,6 @@ public:
   static std::uint32_t tipStart(const VoxelGrid& grid, const Cluster& c);
 
 private:
-  std::uint32_t band(std::uint32_t r) const
-  {
-    return static_cast<std::uint32_t>(codes.ss[r] * grid.inverseBandWidth);
-  }
-  std::uint32_t find(std::uint32_t r);
-
   const VoxelGrid& grid;
   RunMeter& meter;
   const VoxelCodes& codes;

@@ -67,9 +67,12 @@ void SeedCodeStage::propagate(const std::vector<std::uint32_t>& sources)
   const StageTimer timer{ meter, "ss" };
   BucketQueue queue(grid.minSpacing, grid.maxSpacing * std::sqrt(3.0));
   codes.order.clear();
+  // The inner loop's arrays, held here (their size does not change while it runs).
+  float* const ss = codes.ss.data();
+  std::uint8_t* const flags = codes.flags.data();
   for (std::uint32_t s : sources)
   {
-    codes.ss[grid.mask.rank(s)] = 0.0F;
+    ss[grid.mask.rank(s)] = 0.0F;
     queue.push(s, 0.0);
   }
   std::uint32_t lin = 0;
@@ -81,13 +84,13 @@ void SeedCodeStage::propagate(const std::vector<std::uint32_t>& sources)
       meter.checkpoint(); // stale entries are not work, but they take time
     }
     const std::uint32_t r = grid.mask.rank(lin);
-    if (codes.flags[r] & kDone)
+    if (flags[r] & kDone)
     {
       continue; // a stale entry of a voxel improved while queued
     }
-    codes.flags[r] |= kDone;
+    flags[r] |= kDone;
     codes.order.push_back(lin);
-    const float d = codes.ss[r];
+    const float d = ss[r];
     // No test of the neighbours' kDone flags (a cache miss each): a finalized neighbour u left a
     // bucket at or below the current one, so ss[u] < d + bucket width <= d + any edge, and the
     // comparison below already rejects it.
@@ -95,9 +98,9 @@ void SeedCodeStage::propagate(const std::vector<std::uint32_t>& sources)
       [&](std::uint64_t u, int n, std::uint32_t ru)
       {
         const float nd = d + grid.offLenF[n];
-        if (nd < codes.ss[ru])
+        if (nd < ss[ru])
         {
-          codes.ss[ru] = nd;
+          ss[ru] = nd;
           queue.push(static_cast<std::uint32_t>(u), nd);
         }
       });
