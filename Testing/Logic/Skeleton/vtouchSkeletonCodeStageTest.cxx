@@ -1,9 +1,12 @@
-// Stages 1-2 of the voxel coder alone: the BS and SS codes on a straight tube.
+// Stages 1-2 of the voxel coder alone: the BS and SS codes on a straight tube; the run's meter.
 #include "vtouchSkeletonStageTestSupport.h"
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -87,6 +90,44 @@ TEST(SkeletonSeedCodeStage, ExtremityRegionIsTheCentreOfAnEndCap)
   // Small masks: no exploration on blocks.
   EXPECT_EQ(run.seed.coarseExtremity(run.lin(12, 8, 8)), SeedCodeStage::kNoVoxel);
   EXPECT_EQ(run.seed.explorerBytes(), 0U);
+}
+
+TEST(SkeletonRunMeter, AStopFromTheCallbackThrowsAndRaisesTheStopFlag)
+{
+  std::vector<double> seen;
+  const std::function<bool(double)> progress = [&](double f)
+  {
+    seen.push_back(f);
+    return seen.size() < 2;
+  };
+  RunMeter meter(progress);
+  meter.setTotalWork(4 * 0x10000);
+  meter.tick(0x10000); // a check point: 1/4, go on
+  EXPECT_FALSE(meter.stopRequested);
+  EXPECT_THROW(meter.tick(0x10000), VoxelCodingAborted);
+  EXPECT_TRUE(meter.stopRequested);
+  ASSERT_EQ(seen.size(), 2U);
+  EXPECT_DOUBLE_EQ(seen[0], 0.25);
+  EXPECT_DOUBLE_EQ(seen[1], 0.5);
+}
+
+TEST(SkeletonRunMeter, StageTimesKeepTheirNamesThroughTheCoder)
+{
+  const SparseVesselMask mask = straightTube();
+  VoxelCodingParameters parameters;
+  parameters.minimumComponentSize = 10;
+  const RawSkeleton s = VoxelCoder(mask, parameters).run();
+  ASSERT_EQ(s.paths.size(), 1U);
+  std::vector<std::string> names;
+  for (const auto& stage : s.stageSeconds)
+  {
+    names.push_back(stage.first);
+    EXPECT_GE(stage.second, 0.0);
+  }
+  // A small mask: the BS code on the caller's thread, no exploration on blocks.
+  EXPECT_EQ(names,
+    (std::vector<std::string>{
+      "bs", "ss", "clusters", "center", "loops", "trace(all)", "coder(all)" }));
 }
 
 } // namespace
