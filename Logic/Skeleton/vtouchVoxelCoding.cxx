@@ -40,7 +40,8 @@ struct VoxelCoder::Impl
 
   RawSkeleton run();
 
-  /// Stages 3-7 on the component whose SS code is propagated (from `sources`, unless empty).
+  /// Stages 2-7 on one component: its SS code from `sources` (empty: already propagated), then
+  /// the clusters (re-rooted at the thickest end when `chooseRoot`), trace, loops, ends, geometry.
   void handleComponent(const std::vector<std::uint32_t>& sources, bool chooseRoot);
   /// Stages 4-7 on the component's clusters.
   void traceComponent();
