@@ -1,172 +1,188 @@
+// vtouch::VoxelCoder: runs the stages of the voxel coding in order, per component of the mask.
+// The stages, their inputs and outputs: Docs/CENTERLINES.md, "Stage map".
 #include "vtouchVoxelCoding.h"
 
-#include "vtouchVoxelCodingImpl.h"
+#include "vtouchSkeletonBoundaryCodeStage.h"
+#include "vtouchSkeletonClusterStage.h"
+#include "vtouchSkeletonDraft.h"
+#include "vtouchSkeletonEndStage.h"
+#include "vtouchSkeletonGeometryStage.h"
+#include "vtouchSkeletonLoopStage.h"
+#include "vtouchSkeletonRunMeter.h"
+#include "vtouchSkeletonSeedCodeStage.h"
+#include "vtouchSkeletonTraceStage.h"
+#include "vtouchSkeletonTracer.h"
+#include "vtouchSkeletonVoxelCodes.h"
+#include "vtouchSkeletonVoxelGrid.h"
 
+#include <cmath>
 #include <memory>
 
 namespace vtouch
 {
 
-VoxelCoder::Impl::Impl(const SparseVesselMask& m,
-  const VoxelCodingParameters& p,
-  const std::function<bool(double)>& cb)
-  : mask(m)
-  , par(p)
-  , progress(cb)
+/// One run: the data the stages pass on (codes, clusters, the draft skeleton) and the stages that
+/// keep state across components (the SS code's explorer, the tracer's index of skeleton voxels).
+struct VoxelCoder::Impl
 {
-  nx = m.dims()[0];
-  ny = m.dims()[1];
-  nz = m.dims()[2];
-  nx32 = static_cast<std::uint32_t>(nx);
-  ny32 = static_cast<std::uint32_t>(ny);
-  inverseNx = 1.0 / static_cast<double>(nx32);
-  inverseNy = 1.0 / static_cast<double>(ny32);
-  for (int a = 0; a < 3; ++a)
+  Impl(const SparseVesselMask& mask,
+    const VoxelCodingParameters& parameters,
+    const std::function<bool(double)>& progress)
+    : par(parameters)
+    , meter(progress)
+    , grid(mask, parameters.spacing_mm, parameters.clusterWidth_mm)
+    , seedCode(grid, meter, codes, parameters.clusterWidth_mm)
+    , clusterStage(grid, meter, codes, graph)
+    , tracer(grid, meter, codes, graph, draft)
+    , boundaryCode(grid, meter, codes.bs)
   {
-    sp[a] = p.spacing_mm[a];
   }
-  minSpacing = std::min({ sp[0], sp[1], sp[2] });
-  maxSpacing = std::max({ sp[0], sp[1], sp[2] });
-  bandWidth = p.clusterWidth_mm > 0.0 ? p.clusterWidth_mm : maxSpacing;
-  inverseBandWidth = static_cast<float>(1.0 / bandWidth);
-  int n = 0;
-  for (int dk = -1; dk <= 1; ++dk)
-    for (int dj = -1; dj <= 1; ++dj)
-      for (int di = -1; di <= 1; ++di)
-      {
-        if (di == 0 && dj == 0 && dk == 0)
-        {
-          continue;
-        }
-        off[n][0] = di;
-        off[n][1] = dj;
-        off[n][2] = dk;
-        offLin[n] = di + nx * (dj + ny * dk);
-        offLen[n] =
-          std::sqrt(di * di * sp[0] * sp[0] + dj * dj * sp[1] * sp[1] + dk * dk * sp[2] * sp[2]);
-        offLenF[n] = static_cast<float>(offLen[n]);
-        offMm[n][0] = di * sp[0];
-        offMm[n][1] = dj * sp[1];
-        offMm[n][2] = dk * sp[2];
-        ++n;
-      }
-  for (int q = 0; q < 9; ++q)
+
+  RawSkeleton run();
+
+  /// Stages 2-7 on one component: its SS code from `sources` (empty: already propagated), then
+  /// the clusters (re-rooted at the thickest end when `chooseRoot`), trace, loops, ends, geometry.
+  void handleComponent(const std::vector<std::uint32_t>& sources, bool chooseRoot);
+  /// Stages 4-7 on the component's clusters.
+  void traceComponent();
+  /// Flags the last propagation's voxels as handled.
+  void markComponent();
+
+  const VoxelCodingParameters& par;
+  skeleton::RunMeter meter;
+  skeleton::VoxelGrid grid;
+  skeleton::VoxelCodes codes;
+  skeleton::ClusterGraph graph;
+  skeleton::SkeletonDraft draft;
+  skeleton::SeedCodeStage seedCode;
+  skeleton::ClusterStage clusterStage;
+  skeleton::SkeletonTracer tracer;
+  // Last: destroyed first, its thread joined before the arrays it writes go.
+  skeleton::BoundaryCodeStage boundaryCode;
+};
+
+void VoxelCoder::Impl::markComponent()
+{
+  for (std::uint32_t v : codes.order)
   {
-    rowOffset[q] = nx * ((q % 3 - 1) + ny * (q / 3 - 1));
+    codes.flags[grid.mask.rank(v)] |= skeleton::VoxelCodes::kComponent;
   }
+}
+
+void VoxelCoder::Impl::handleComponent(const std::vector<std::uint32_t>& sources, bool chooseRoot)
+{
+  if (!sources.empty())
+  {
+    seedCode.propagate(sources);
+  }
+  boundaryCode.await(); // the clusters read bs
+  clusterStage.build();
+  if (chooseRoot)
+  {
+    if (const std::optional<std::uint32_t> root = clusterStage.thickerRoot())
+    {
+      seedCode.reset();
+      seedCode.propagate({ *root });
+      clusterStage.build();
+    }
+  }
+  traceComponent();
+  ++draft.skeleton.components;
+}
+
+void VoxelCoder::Impl::traceComponent()
+{
+  const skeleton::StageTimer timer{ meter, "trace(all)" };
+  const std::size_t firstPath = draft.skeleton.paths.size();
+  if (skeleton::TraceStage(tracer, par.minimumBranchLength).run() == 0)
+  {
+    return;
+  }
+  skeleton::LoopStage(tracer, par.minimumBranchLength, firstPath).run();
+  skeleton::EndStage(grid, par.minimumBranchLength, draft, firstPath).run();
+  skeleton::GeometryStage(draft.skeleton, firstPath, grid.minSpacing).run();
 }
 
 RawSkeleton VoxelCoder::Impl::run()
 {
-  std::unique_ptr<StageTimer> timer(new StageTimer{ *this, "coder(all)" });
+  using skeleton::VoxelCodes;
+  std::unique_ptr<skeleton::StageTimer> timer(new skeleton::StageTimer{ meter, "coder(all)" });
+  const SparseVesselMask& mask = grid.mask;
   const std::uint64_t n = mask.vesselCount();
+  RawSkeleton& out = draft.skeleton;
   out.vesselVoxels = n;
-  totalWork = std::max<std::uint64_t>(1, n * 6);
+  meter.setTotalWork(n * 6);
   // The codes' arrays (17 bytes per vessel voxel): their first touch takes a while on large
   // masks, a check point after each.
-  bs.assign(n, kInf);
-  checkpoint();
-  aux.assign(n, 0);
-  checkpoint();
-  flags.assign(n, 0);
-  ss.assign(n, kInf);
-  checkpoint();
-  order.reserve(n);
-  // The BS code runs beside the first propagation(s); buildClusters() waits for it.
-  startBoundaryCode();
+  codes.bs.assign(n, VoxelCodes::kInf);
+  meter.checkpoint();
+  graph.label.assign(n, 0);
+  meter.checkpoint();
+  codes.flags.assign(n, 0);
+  codes.ss.assign(n, VoxelCodes::kInf);
+  meter.checkpoint();
+  codes.order.reserve(n);
+  // The BS code runs beside the first propagation(s); handleComponent() waits for it.
+  boundaryCode.start();
 
-  // `sources` empty: the SS code from the root is already propagated.
-  const auto handle = [&](const std::vector<std::uint32_t>& sources, bool chooseRoot)
-  {
-    if (!sources.empty())
-    {
-      propagate(sources);
-    }
-    buildClusters();
-    if (chooseRoot)
-    {
-      rootAtThickestEnd();
-    }
-    traceComponent();
-    ++out.components;
-  };
   if (par.hasSeed)
   {
     const std::int64_t* s = par.seedIndex.data();
-    const std::uint64_t lin = static_cast<std::uint64_t>(s[0] + nx * (s[1] + ny * s[2]));
-    handle({ static_cast<std::uint32_t>(lin) }, false);
+    handleComponent({ static_cast<std::uint32_t>(grid.linOf(s[0], s[1], s[2])) }, false);
   }
   else
   {
     mask.forEach(
       [&](std::uint64_t lin)
       {
-        if (flags[mask.rank(lin)] & kComponent)
+        if (codes.flags[mask.rank(lin)] & VoxelCodes::kComponent)
         {
           return;
         }
-        const std::uint32_t root = coarseExtremity(static_cast<std::uint32_t>(lin));
-        if (root != kNoVoxel && !(flags[mask.rank(root)] & kComponent))
+        const std::uint32_t root = seedCode.coarseExtremity(static_cast<std::uint32_t>(lin));
+        if (root != skeleton::SeedCodeStage::kNoVoxel &&
+            !(codes.flags[mask.rank(root)] & VoxelCodes::kComponent))
         {
-          propagate({ root });
-          if (ss[mask.rank(lin)] != kInf) // else the blocks joined two components: exact search
-          {
-            for (std::uint32_t v : order)
+          seedCode.propagate({ root });
+          if (codes.ss[mask.rank(lin)] != VoxelCodes::kInf) // else the blocks joined two
+          {                                                 // components: exact search
+            markComponent();
+            if (codes.order.size() < par.minimumComponentSize)
             {
-              flags[mask.rank(v)] |= kComponent;
-            }
-            if (order.size() < par.minimumComponentSize)
-            {
-              resetPropagation();
+              seedCode.reset();
               return;
             }
-            handle({}, true);
-            for (std::uint32_t v : order)
-            {
-              flags[mask.rank(v)] |= kComponent;
-            }
+            handleComponent({}, true);
+            markComponent();
             return;
           }
-          resetPropagation();
+          seedCode.reset();
         }
-        propagate({ static_cast<std::uint32_t>(lin) });
-        for (std::uint32_t v : order)
+        seedCode.propagate({ static_cast<std::uint32_t>(lin) });
+        markComponent();
+        if (codes.order.size() < par.minimumComponentSize)
         {
-          flags[mask.rank(v)] |= kComponent;
-        }
-        if (order.size() < par.minimumComponentSize)
-        {
-          resetPropagation();
+          seedCode.reset();
           return;
         }
-        const std::vector<std::uint32_t> region = extremityRegion();
-        resetPropagation();
-        handle(region, true);
-        for (std::uint32_t v : order)
-        {
-          flags[mask.rank(v)] |= kComponent;
-        }
+        const std::vector<std::uint32_t> region = seedCode.extremityRegion();
+        seedCode.reset();
+        handleComponent(region, true);
+        markComponent();
       });
   }
-  awaitBoundaryCode(); // no component was large enough: nothing waited for it yet
-  std::size_t clusterBytes = clusters.capacity() * sizeof(Cluster);
-  if (explorer)
-  {
-    // The block mask and the explorer's codes live until the end of the run.
-    clusterBytes += coarseMask->memoryBytes() + explorer->ss.capacity() * (sizeof(float) + 1) +
-                    explorer->order.capacity() * sizeof(std::uint32_t) +
-                    explorer->peakQueue * sizeof(std::uint32_t);
-  }
+  boundaryCode.await(); // no component was large enough: nothing waited for it yet
+  // The block mask and the explorer's codes live until the end of the run.
+  const std::size_t clusterBytes =
+    graph.clusters.capacity() * sizeof(skeleton::Cluster) + seedCode.explorerBytes();
+  const std::size_t queueBytes = seedCode.peakQueue() * sizeof(std::uint32_t);
   // While the BS code runs, its scratch coexists with the first propagation's queue.
   out.peakBytes = n * (2 * sizeof(float) + sizeof(std::uint32_t) + 1) +
-                  order.capacity() * sizeof(std::uint32_t) +
-                  std::max(peakQueue * sizeof(std::uint32_t) + clusterBytes,
-                    boundaryScratchBytes + peakQueue * sizeof(std::uint32_t));
-  if (progress && !progress(1.0))
-  {
-    throw VoxelCodingAborted();
-  }
+                  codes.order.capacity() * sizeof(std::uint32_t) +
+                  std::max(queueBytes + clusterBytes, boundaryCode.scratchBytes() + queueBytes);
+  meter.finish();
   timer.reset();
+  out.stageSeconds = std::move(meter.stageSeconds);
   return std::move(out);
 }
 

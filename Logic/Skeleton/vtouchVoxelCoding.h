@@ -82,7 +82,8 @@ int appendSkeletonPoint(RawSkeletonPath& path,
   const std::array<double, 3>& center_mm,
   double radius_mm);
 
-/// Runs BS code, SS code, clustering, cluster graph, back-tracing, loop closing and spur pruning.
+/// Runs BS code, SS code, clustering, cluster graph, back-tracing, loop closing and spur pruning
+/// (the stages of vtouch::skeleton, one class each: Docs/CENTERLINES.md, "Stage map").
 /// Time and memory are linear in the number of vessel voxels (bucket queues, no heap, no dense
 /// per-volume arrays besides the caller's 1-bit mask and its rank index).
 class VoxelCoder

@@ -1,4 +1,4 @@
-// Voxel coding stage 2: the BS code, as an exact separable Euclidean distance transform
+// Voxel coding stage 1: the BS code, as an exact separable Euclidean distance transform
 // restricted to the vessel voxels.
 //
 // Why separable: the vector propagation it replaces visited every vessel voxel's 26 neighbours
@@ -12,14 +12,42 @@
 // only the run and its two bounding background voxels matter: the work is linear in the vessel
 // voxels, and nothing is allocated per volume voxel (columns are gathered plane by plane with a
 // counting sort on x: scratch for the largest plane only).
-#include "vtouchVoxelCodingImpl.h"
+#include "vtouchSkeletonBoundaryCodeStage.h"
+
+#include "vtouchProgress.h"
+#include "vtouchSkeletonVoxelCodes.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 
 #include <system_error>
 
 namespace vtouch
 {
+namespace skeleton
+{
+namespace
+{
+constexpr float kInf = VoxelCodes::kInf;
+} // namespace
 
-void VoxelCoder::Impl::boundaryRowPass()
+BoundaryCodeStage::BoundaryCodeStage(const VoxelGrid& g, RunMeter& m, std::vector<float>& codes)
+  : grid(g)
+  , meter(m)
+  , bs(codes)
+{
+}
+
+void BoundaryCodeStage::boundaryCheckpoint() const
+{
+  if (boundaryQuiet && meter.stopRequested.load(std::memory_order_relaxed))
+  {
+    throw Cancelled();
+  }
+}
+
+void BoundaryCodeStage::rowPass()
 {
   // Along x, runs are consecutive ranks: the distance to the nearest background voxel of the row
   // is the distance to the run's ends. Outside the volume is not background.
@@ -33,16 +61,16 @@ void VoxelCoder::Impl::boundaryRowPass()
     {
       const std::int64_t i = runFirstI + static_cast<std::int64_t>(q - runStart);
       const double left = runFirstI > 0 ? static_cast<double>(i - runFirstI + 1) : kInf;
-      const double right = lastI < nx - 1 ? static_cast<double>(lastI - i + 1) : kInf;
-      const double d = std::min(left, right) * sp[0];
+      const double right = lastI < grid.nx - 1 ? static_cast<double>(lastI - i + 1) : kInf;
+      const double d = std::min(left, right) * grid.sp[0];
       bs[q] = static_cast<float>(d * d);
     }
   };
-  mask.forEach(
+  grid.mask.forEach(
     [&](std::uint64_t lin)
     {
       std::int64_t c[3];
-      coords(lin, c);
+      grid.coords(lin, c);
       if (!(r > 0 && lin == previousLin + 1 && c[0] == previousI + 1))
       {
         if (r > 0)
@@ -57,7 +85,7 @@ void VoxelCoder::Impl::boundaryRowPass()
       ++r;
       if (!boundaryQuiet)
       {
-        tick();
+        meter.tick();
       }
       else if ((r & 0xFFFF) == 0)
       {
@@ -70,29 +98,30 @@ void VoxelCoder::Impl::boundaryRowPass()
   }
 }
 
-void VoxelCoder::Impl::boundaryLinePass(int axis)
+void BoundaryCodeStage::linePass(int axis)
 {
   // Plane by plane (z slices for the pass along y, y slabs for the pass along z): gather the
   // plane's vessel voxels row by row (a row is a run of consecutive ranks), sort them by x with a
   // counting sort (stable: each column comes out sorted along the axis) and solve each column's
   // vessel runs. Scratch: the largest plane's vessel voxels and one counter per x, never a
   // per-vessel-voxel or per-volume-line array.
-  const std::int64_t len = axis == 1 ? ny : nz;
-  const std::int64_t planes = axis == 1 ? nz : ny;
-  const double s = sp[axis];
-  std::vector<std::uint32_t> start(static_cast<std::size_t>(nx) + 1);
+  const std::int64_t len = axis == 1 ? grid.ny : grid.nz;
+  const std::int64_t planes = axis == 1 ? grid.nz : grid.ny;
+  const double s = grid.sp[axis];
+  std::vector<std::uint32_t> start(static_cast<std::size_t>(grid.nx) + 1);
   for (std::int64_t p = 0; p < planes; ++p)
   {
     boundaryCheckpoint();
-    const auto rowBegin = [&](std::int64_t t)
-    { return static_cast<std::uint64_t>(nx * (axis == 1 ? t + ny * p : p + ny * t)); };
+    const auto rowBegin = [&](std::int64_t t) {
+      return static_cast<std::uint64_t>(grid.nx * (axis == 1 ? t + grid.ny * p : p + grid.ny * t));
+    };
     std::fill(start.begin(), start.end(), 0U);
     std::uint32_t count = 0;
     for (std::int64_t t = 0; t < len; ++t)
     {
       const std::uint64_t row = rowBegin(t);
-      mask.forEachIn(row,
-        row + static_cast<std::uint64_t>(nx),
+      grid.mask.forEachIn(row,
+        row + static_cast<std::uint64_t>(grid.nx),
         [&](std::uint64_t lin)
         {
           ++start[lin - row + 1];
@@ -103,7 +132,7 @@ void VoxelCoder::Impl::boundaryLinePass(int axis)
     {
       continue;
     }
-    for (std::int64_t i = 0; i < nx; ++i)
+    for (std::int64_t i = 0; i < grid.nx; ++i)
     {
       start[i + 1] += start[i];
     }
@@ -112,9 +141,9 @@ void VoxelCoder::Impl::boundaryLinePass(int axis)
     for (std::int64_t t = 0; t < len; ++t)
     {
       const std::uint64_t row = rowBegin(t);
-      std::uint32_t rank = mask.rankBefore(row);
-      mask.forEachIn(row,
-        row + static_cast<std::uint64_t>(nx),
+      std::uint32_t rank = grid.mask.rankBefore(row);
+      grid.mask.forEachIn(row,
+        row + static_cast<std::uint64_t>(grid.nx),
         [&](std::uint64_t lin)
         {
           const std::uint32_t slot = start[lin - row]++;
@@ -124,7 +153,7 @@ void VoxelCoder::Impl::boundaryLinePass(int axis)
     }
     // Now start[i] is the end of column i (and the beginning of column i + 1).
     std::uint32_t begin = 0;
-    for (std::int64_t i = 0; i < nx; ++i)
+    for (std::int64_t i = 0; i < grid.nx; ++i)
     {
       const std::uint32_t end = start[i];
       std::uint32_t a = begin;
@@ -144,12 +173,12 @@ void VoxelCoder::Impl::boundaryLinePass(int axis)
       (planeRank.capacity() + planePosition.capacity() + start.size()) * sizeof(std::uint32_t));
     if (!boundaryQuiet)
     {
-      tick(count);
+      meter.tick(count);
     }
   }
 }
 
-void VoxelCoder::Impl::envelopeOfRun(const std::uint32_t* ranks,
+void BoundaryCodeStage::envelopeOfRun(const std::uint32_t* ranks,
   std::uint32_t first,
   std::uint32_t count,
   std::int64_t len,
@@ -227,7 +256,7 @@ void VoxelCoder::Impl::envelopeOfRun(const std::uint32_t* ranks,
   }
 }
 
-void VoxelCoder::Impl::startBoundaryCode()
+void BoundaryCodeStage::start()
 {
   // A thread costs ~0.2 MB of stack and heap arena: worth it only for large vessels.
   constexpr std::size_t kThreadFrom = 1U << 17;
@@ -236,7 +265,7 @@ void VoxelCoder::Impl::startBoundaryCode()
     boundaryQuiet = true;
     try
     {
-      boundaryThread = std::thread([this] { boundaryCodeOnThread(); });
+      boundaryThread = std::thread([this] { computeOnThread(); });
       return;
     }
     catch (const std::system_error&)
@@ -245,26 +274,26 @@ void VoxelCoder::Impl::startBoundaryCode()
     }
   }
   const auto t0 = std::chrono::steady_clock::now();
-  computeBoundaryCode();
-  out.stageSeconds.emplace_back(
+  compute();
+  meter.stageSeconds.emplace_back(
     "bs", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
-void VoxelCoder::Impl::boundaryCodeOnThread()
+void BoundaryCodeStage::computeOnThread()
 {
   try
   {
     const auto t0 = std::chrono::steady_clock::now();
-    computeBoundaryCode();
+    compute();
     boundarySeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   catch (...)
   {
-    boundaryError = std::current_exception(); // rethrown by awaitBoundaryCode()
+    boundaryError = std::current_exception(); // rethrown by await()
   }
 }
 
-void VoxelCoder::Impl::awaitBoundaryCode()
+void BoundaryCodeStage::await()
 {
   if (!boundaryThread.joinable())
   {
@@ -279,27 +308,28 @@ void VoxelCoder::Impl::awaitBoundaryCode()
     std::rethrow_exception(boundaryError);
   }
   // "bs" is the thread's own time; "bs(wait)" the part the caller waited for.
-  out.stageSeconds.emplace_back("bs", boundarySeconds);
-  out.stageSeconds.emplace_back("bs(wait)", waited);
-  tick(2 * bs.size());
+  meter.stageSeconds.emplace_back("bs", boundarySeconds);
+  meter.stageSeconds.emplace_back("bs(wait)", waited);
+  meter.tick(2 * bs.size());
 }
 
-VoxelCoder::Impl::~Impl()
+BoundaryCodeStage::~BoundaryCodeStage()
 {
   if (boundaryThread.joinable())
   {
-    boundaryStop = true; // the run is unwinding (cancelled or failed): no one needs the BS code
+    meter.stopRequested =
+      true; // the run is unwinding (cancelled or failed): no one needs the BS code
     boundaryThread.join();
   }
 }
 
-void VoxelCoder::Impl::computeBoundaryCode()
+void BoundaryCodeStage::compute()
 {
   // Timed by the caller (it may run on a second thread: no StageTimer, whose list is shared).
   // bs holds squared distances (mm^2) until the last pass.
-  boundaryRowPass();
-  boundaryLinePass(1);
-  boundaryLinePass(2);
+  rowPass();
+  linePass(1);
+  linePass(2);
   for (float& d : bs)
   {
     d = std::sqrt(d);
@@ -312,4 +342,5 @@ void VoxelCoder::Impl::computeBoundaryCode()
   envelopeFrom = {};
 }
 
+} // namespace skeleton
 } // namespace vtouch

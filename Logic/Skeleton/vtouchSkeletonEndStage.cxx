@@ -1,8 +1,11 @@
-// Voxel coding, after back-tracing: where a vessel that ends inside the volume ends.
+// Voxel coding stage 6: where the paths end. Stubs beyond the last junction are cut, and a vessel
+// that ends inside the volume ends at its cap's centre.
 //
 // The medial axis of a rounded end cap runs on to the cap's apex; the vessel's centerline ends at
 // the cap's centre, one radius back from the apex. The points in between are dropped.
-#include "vtouchVoxelCodingImpl.h"
+#include "vtouchSkeletonEndStage.h"
+
+#include "vtouchSkeletonPaths.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +13,11 @@
 
 namespace vtouch
 {
+namespace skeleton
+{
 namespace
 {
-using Point = std::array<double, 3>;
+using Point = Point_mm;
 
 Point unit(const Point& v)
 {
@@ -72,14 +77,93 @@ bool meanInShell(const RawSkeletonPath& path,
 }
 } // namespace
 
-double VoxelCoder::Impl::maskValueAt(const Point& p_mm) const
+EndStage::EndStage(const VoxelGrid& g,
+  double minimumBranchLength_radii,
+  SkeletonDraft& d,
+  std::size_t first)
+  : grid(g)
+  , minimumBranchLength(minimumBranchLength_radii)
+  , draft(d)
+  , firstPath(first)
 {
-  const std::int64_t size[3] = { nx, ny, nz };
+}
+
+void EndStage::run()
+{
+  pruneStubEnds();
+  trimClosedEnds();
+}
+
+void EndStage::pruneStubEnds()
+{
+  RawSkeleton& out = draft.skeleton;
+  for (std::size_t p = firstPath; p < out.paths.size(); ++p)
+  {
+    RawSkeletonPath& path = out.paths[p];
+    const int n = static_cast<int>(path.center_mm.size());
+    int first = n, last = -1; // the outermost points other paths attach to
+    for (const RawJunction& j : out.junctions)
+    {
+      if (j.parentPath == static_cast<int>(p))
+      {
+        first = std::min(first, j.parentPoint);
+        last = std::max(last, j.parentPoint);
+      }
+    }
+    if (last < 0)
+    {
+      continue;
+    }
+    const auto stubLength = [&](int from, int to)
+    {
+      double length = 0.0;
+      for (int i = std::min(from, to); i < std::max(from, to); ++i)
+      {
+        length += distance(path.center_mm[i], path.center_mm[i + 1]);
+      }
+      return length;
+    };
+    const auto isStub = [&](int junctionPoint, int end)
+    {
+      // The vessel's radius there: the junction can be on a strand of noise on the wall.
+      return junctionPoint != end &&
+             stubLength(junctionPoint, end) <
+               std::max(minimumBranchLength *
+                          std::max(nearbyRadius(path, junctionPoint),
+                            vesselRadiusNear(path, junctionPoint, 2.0 * grid.maxSpacing)),
+                 2.0 * grid.bandWidth);
+    };
+    if (path.tailJunction < 0 && isStub(last, n - 1))
+    {
+      path.voxels.resize(static_cast<std::size_t>(last) + 1);
+      path.center_mm.resize(static_cast<std::size_t>(last) + 1);
+      path.radius_mm.resize(static_cast<std::size_t>(last) + 1);
+    }
+    if (path.headJunction < 0 && first < static_cast<int>(path.center_mm.size()) - 1 &&
+        isStub(first, 0))
+    {
+      path.voxels.erase(path.voxels.begin(), path.voxels.begin() + first);
+      path.center_mm.erase(path.center_mm.begin(), path.center_mm.begin() + first);
+      path.radius_mm.erase(path.radius_mm.begin(), path.radius_mm.begin() + first);
+      for (RawJunction& j : out.junctions)
+      {
+        if (j.parentPath == static_cast<int>(p))
+        {
+          j.parentPoint -= first;
+        }
+      }
+    }
+  }
+}
+
+double EndStage::maskValueAt(const Point& p_mm) const
+{
+  const std::int64_t size[3] = { grid.nx, grid.ny, grid.nz };
   std::int64_t base[3];
   double w[3];
   for (int a = 0; a < 3; ++a)
   {
-    const double x = p_mm[a] / sp[a];
+    const double x = p_mm[a] / grid.sp[a];
     base[a] = static_cast<std::int64_t>(std::floor(x));
     w[a] = x - static_cast<double>(base[a]);
     if (base[a] < 0 || base[a] + 1 >= size[a])
@@ -98,8 +182,7 @@ double VoxelCoder::Impl::maskValueAt(const Point& p_mm) const
       index[a] = base[a] + up;
       weight *= up ? w[a] : 1.0 - w[a];
     }
-    if (weight > 0.0 &&
-        mask.test(static_cast<std::uint64_t>(index[0] + nx * (index[1] + ny * index[2]))))
+    if (weight > 0.0 && grid.mask.test(grid.linOf(index[0], index[1], index[2])))
     {
       value += weight;
     }
@@ -107,9 +190,9 @@ double VoxelCoder::Impl::maskValueAt(const Point& p_mm) const
   return value;
 }
 
-double VoxelCoder::Impl::distanceToWall(const Point& from, const Point& dir, double limit_mm) const
+double EndStage::distanceToWall(const Point& from, const Point& dir, double limit_mm) const
 {
-  const double step = 0.25 * minSpacing;
+  const double step = 0.25 * grid.minSpacing;
   double previous = maskValueAt(from);
   if (previous < 0.5)
   {
@@ -132,7 +215,7 @@ double VoxelCoder::Impl::distanceToWall(const Point& from, const Point& dir, dou
   return -1.0;
 }
 
-VoxelCoder::Impl::EndCap VoxelCoder::Impl::measureEndCap(const RawSkeletonPath& path,
+EndStage::EndCap EndStage::measureEndCap(const RawSkeletonPath& path,
   bool fromTail,
   const std::vector<char>& pinned) const
 {
@@ -144,7 +227,7 @@ VoxelCoder::Impl::EndCap VoxelCoder::Impl::measureEndCap(const RawSkeletonPath& 
   // measured (below); elsewhere it misses the cap's centre by up to two voxels either way,
   // depending on how the voxels fall: BS reaches the nearest background voxel centre, half a
   // voxel beyond the wall, the end point sits inside the apex voxel, and BS dips near the cap.
-  const double tolerance = 0.5 * minSpacing + 0.1 * path.radius_mm[at(n / 2)];
+  const double tolerance = 0.5 * grid.minSpacing + 0.1 * path.radius_mm[at(n / 2)];
   std::size_t widened = 0;
   std::size_t candidates = 1;
   double radius = path.radius_mm[at(0)];
@@ -178,7 +261,7 @@ VoxelCoder::Impl::EndCap VoxelCoder::Impl::measureEndCap(const RawSkeletonPath& 
     return { widened, std::nullopt }; // too short an end to measure
   }
   const Point axis = unit({ near[0] - far[0], near[1] - far[1], near[2] - far[2] });
-  const double toApex = distanceToWall(near, axis, 4.0 * radius + 2.0 * maxSpacing);
+  const double toApex = distanceToWall(near, axis, 4.0 * radius + 2.0 * grid.maxSpacing);
   const auto [u, v] = crossSectionAxes(axis);
   std::vector<double> across;
   for (int i = 0; i < 8; ++i)
@@ -187,7 +270,7 @@ VoxelCoder::Impl::EndCap VoxelCoder::Impl::measureEndCap(const RawSkeletonPath& 
     const Point dir = unit({ std::cos(angle) * u[0] + std::sin(angle) * v[0],
       std::cos(angle) * u[1] + std::sin(angle) * v[1],
       std::cos(angle) * u[2] + std::sin(angle) * v[2] });
-    const double d = distanceToWall(near, dir, 3.0 * radius + 2.0 * maxSpacing);
+    const double d = distanceToWall(near, dir, 3.0 * radius + 2.0 * grid.maxSpacing);
     if (d > 0.0)
     {
       across.push_back(d);
@@ -207,9 +290,9 @@ VoxelCoder::Impl::EndCap VoxelCoder::Impl::measureEndCap(const RawSkeletonPath& 
   // Toward the apex the trace leaves the axis for the voxel farthest from the root, which need
   // not be the apex (by several voxels on thick caps coded on blocks); "on the axis" allows for
   // the discretisation and for a vessel that bends (the axis is a line).
-  const double offAxis = 0.5 * maxSpacing + 0.1 * radius;
+  const double offAxis = 0.5 * grid.maxSpacing + 0.1 * radius;
   EndCap cap{ widened, std::nullopt };
-  double best = maxSpacing; // the end moves by at most a voxel
+  double best = grid.maxSpacing; // the end moves by at most a voxel
   for (std::size_t k = 0; k < candidates; ++k)
   {
     const Point& c = path.center_mm[at(k)];
@@ -226,8 +309,9 @@ VoxelCoder::Impl::EndCap VoxelCoder::Impl::measureEndCap(const RawSkeletonPath& 
   return cap;
 }
 
-void VoxelCoder::Impl::trimClosedEnds(std::size_t firstPath)
+void EndStage::trimClosedEnds()
 {
+  RawSkeleton& out = draft.skeleton;
   std::vector<char> pinned;
   for (std::size_t p = firstPath; p < out.paths.size(); ++p)
   {
@@ -240,7 +324,7 @@ void VoxelCoder::Impl::trimClosedEnds(std::size_t firstPath)
         pinned[j.parentPoint] = 1;
       }
     }
-    if (closedEnd[p][1] && path.tailJunction < 0)
+    if (draft.closedEnd[p][1] && path.tailJunction < 0)
     {
       const EndCap cap = measureEndCap(path, true, pinned);
       const std::size_t k = cap.trim;
@@ -252,7 +336,7 @@ void VoxelCoder::Impl::trimClosedEnds(std::size_t firstPath)
         path.center_mm.back() = *cap.centre_mm;
       }
     }
-    if (closedEnd[p][0] && path.headJunction < 0)
+    if (draft.closedEnd[p][0] && path.headJunction < 0)
     {
       const EndCap cap = measureEndCap(path, false, pinned);
       const std::size_t k = cap.trim;
@@ -276,4 +360,5 @@ void VoxelCoder::Impl::trimClosedEnds(std::size_t firstPath)
   }
 }
 
+} // namespace skeleton
 } // namespace vtouch

@@ -1,0 +1,267 @@
+// Voxel coding stage 3: clusters and the cluster graph, root choice.
+#include "vtouchSkeletonClusterStage.h"
+
+#include <algorithm>
+
+namespace vtouch
+{
+namespace skeleton
+{
+namespace
+{
+constexpr std::uint32_t kLabelled = ClusterGraph::kLabelled;
+
+/// The root of `r`'s set in the union-find forest `parent` (path halving).
+std::uint32_t find(std::uint32_t* parent, std::uint32_t r)
+{
+  while (parent[r] != r)
+  {
+    parent[r] = parent[parent[r]];
+    r = parent[r];
+  }
+  return r;
+}
+} // namespace
+
+ClusterStage::ClusterStage(const VoxelGrid& g, RunMeter& m, const VoxelCodes& c, ClusterGraph& out)
+  : grid(g)
+  , meter(m)
+  , codes(c)
+  , graph(out)
+{
+}
+
+void ClusterStage::build()
+{
+  const StageTimer timer{ meter, "clusters" };
+  // The passes' arrays, held here (their size does not change while they run).
+  std::uint32_t* const aux = graph.label.data(); // union-find parents, then labels
+  const float* const ss = codes.ss.data();
+  const float* const bs = codes.bs.data();
+  std::vector<Cluster>& clusters = graph.clusters;
+  const float inverseBandWidth = grid.inverseBandWidth;
+  const auto band = [&](std::uint32_t r)
+  { return static_cast<std::uint32_t>(ss[r] * inverseBandWidth); };
+  // The passes visit each voxel's neighbourhood: in scan (rank) order the arrays are
+  // read nearly sequentially, in SS order every access is a cache miss (2-3x slower). Scan order
+  // needs the whole mask to be this component (the usual case); otherwise the SS order is kept.
+  const bool whole = codes.order.size() == grid.mask.vesselCount();
+  const auto visit = [&](auto&& f)
+  {
+    if (whole)
+    {
+      std::uint32_t r = 0;
+      grid.mask.forEach([&](std::uint64_t lin) { f(static_cast<std::uint32_t>(lin), r++); });
+    }
+    else
+    {
+      for (std::uint32_t lin : codes.order)
+      {
+        f(lin, grid.mask.rank(lin));
+      }
+    }
+  };
+  // Union-find (in aux, the smaller rank is the root) of the 26-neighbours in the same SS band;
+  // each pair is joined once, from the later of the two in scan order.
+  if (!whole)
+  {
+    for (std::uint32_t lin : codes.order)
+    {
+      const std::uint32_t r = grid.mask.rank(lin);
+      aux[r] = r;
+    }
+  }
+  std::uint32_t visited = 0;
+  visit(
+    [&](std::uint32_t lin, std::uint32_t r)
+    {
+      if ((++visited & 0xFFFF) == 0)
+      {
+        meter.checkpoint(); // the union-find pass is not counted as work: a check point of its own
+      }
+      if (whole)
+      {
+        aux[r] = r;
+      }
+      const std::uint32_t b = band(r);
+      std::uint32_t rootR = find(aux, r);
+      grid.forNeighbours(
+        lin,
+        [&](std::uint64_t, int, std::uint32_t ru)
+        {
+          if (band(ru) == b)
+          {
+            // Only this voxel's set changes here: its root is tracked.
+            const std::uint32_t y = find(aux, ru);
+            if (y != rootR)
+            {
+              aux[std::max(rootR, y)] = std::min(rootR, y);
+              rootR = std::min(rootR, y);
+            }
+          }
+        },
+        grid.kHalf);
+    });
+  // The roots become the clusters, numbered in SS order (the order of the tips' tie-breaks).
+  clusters.clear();
+  visited = 0;
+  for (std::uint32_t lin : codes.order)
+  {
+    if ((++visited & 0xFFFF) == 0)
+    {
+      meter.checkpoint();
+    }
+    const std::uint32_t r = grid.mask.rank(lin);
+    if (aux[r] == r)
+    {
+      aux[r] = kLabelled | static_cast<std::uint32_t>(clusters.size());
+      clusters.emplace_back();
+      clusters.back().band = band(r);
+    }
+  }
+  // Label of each voxel (its set's cluster) and the cluster sums.
+  const auto resolve = [&](std::uint32_t lin, std::uint32_t r)
+  {
+    if (!(aux[r] & kLabelled))
+    {
+      // Union parents precede their children in rank order, so in scan order the parent is
+      // already labelled; in SS order, follow the chain.
+      std::uint32_t x = aux[r];
+      while (!(aux[x] & kLabelled))
+      {
+        x = aux[x];
+      }
+      aux[r] = aux[x];
+    }
+    Cluster& c = clusters[aux[r] & ~kLabelled];
+    std::int64_t x[3];
+    grid.coords(lin, x);
+    ++c.count;
+    c.onBorder = c.onBorder || x[0] == 0 || x[1] == 0 || x[2] == 0 || x[0] == grid.nx - 1 ||
+                 x[1] == grid.ny - 1 || x[2] == grid.nz - 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      c.sum[a] += static_cast<double>(x[a]) * grid.sp[a];
+    }
+    // Ties of BS go to the lower SS code, whatever the visiting order.
+    if (c.count == 1 || bs[r] > c.maxBs ||
+        (bs[r] == c.maxBs && ss[r] < ss[grid.mask.rank(c.bestVoxel)]))
+    {
+      c.maxBs = bs[r];
+      c.bestVoxel = lin;
+    }
+  };
+  // Cluster graph: clusters of different bands that touch.
+  const auto link = [&](std::uint32_t lin, std::uint32_t r)
+  {
+    const std::uint32_t c = aux[r] & ~kLabelled;
+    // Most neighbours of another band belong to one or two clusters: skip repeats cheaply.
+    std::uint32_t linked[2] = { c, c };
+    grid.forNeighbours(
+      lin,
+      [&](std::uint64_t, int, std::uint32_t ru)
+      {
+        const std::uint32_t cu = aux[ru] & ~kLabelled;
+        if (cu == linked[0] || cu == linked[1] || clusters[cu].band == clusters[c].band)
+        {
+          return;
+        }
+        linked[1] = linked[0];
+        linked[0] = cu;
+        const std::uint32_t hi = clusters[cu].band > clusters[c].band ? cu : c;
+        const std::uint32_t lo = hi == c ? cu : c;
+        ClusterGraph::addUnique(clusters[hi].lower, lo);
+        ClusterGraph::addUnique(clusters[lo].higher, hi);
+      },
+      grid.kHalf);
+    meter.tick();
+  };
+  if (whole)
+  {
+    // One pass: in scan order the 13 neighbours before a voxel are already resolved.
+    visit(
+      [&](std::uint32_t lin, std::uint32_t r)
+      {
+        resolve(lin, r);
+        link(lin, r);
+      });
+  }
+  else
+  {
+    visit(resolve);
+    visit(link);
+  }
+  // Neighbour lists in cluster (SS) order, independent of the visiting order.
+  for (Cluster& c : clusters)
+  {
+    std::sort(c.lower.begin(), c.lower.end());
+    std::sort(c.higher.begin(), c.higher.end());
+  }
+}
+
+std::optional<std::uint32_t> ClusterStage::thickerRoot() const
+{
+  const std::vector<Cluster>& clusters = graph.clusters;
+  // Thickness of an end: the largest BS code within a few bands of it (the end cluster itself
+  // is a cap whose BS is small).
+  constexpr std::uint32_t kBands = 8;
+  const auto thickness = [&](std::uint32_t c)
+  {
+    float t = clusters[c].maxBs;
+    for (std::uint32_t k = 0; k < kBands && !clusters[c].lower.empty(); ++k)
+    {
+      std::uint32_t next = clusters[c].lower.front();
+      for (std::uint32_t l : clusters[c].lower)
+      {
+        next = clusters[l].count > clusters[next].count ? l : next;
+      }
+      c = next;
+      t = std::max(t, clusters[c].maxBs);
+    }
+    return t;
+  };
+  // The root's end measured the same way, walking up from the root's cluster (the first in SS
+  // order): a ball of kBands around a rounded cap's apex would see only the cap, and a vessel of
+  // one calibre (a helix) would then always be re-rooted, at the cost of a second SS code.
+  float rootBs = clusters.empty() ? 0.0F : clusters[0].maxBs;
+  for (std::uint32_t c = 0, k = 0; k < kBands && c < clusters.size() && !clusters[c].higher.empty();
+       ++k)
+  {
+    std::uint32_t next = clusters[c].higher.front();
+    for (std::uint32_t h : clusters[c].higher)
+    {
+      next = clusters[h].count > clusters[next].count ? h : next;
+    }
+    c = next;
+    rootBs = std::max(rootBs, clusters[c].maxBs);
+  }
+  std::int64_t best = -1;
+  float bestBs = 0.0F;
+  for (std::uint32_t c = 0; c < clusters.size(); ++c)
+  {
+    if (clusters[c].band > kBands && clusters[c].higher.empty())
+    {
+      const float t = thickness(c);
+      if (best < 0 || t > bestBs)
+      {
+        best = c;
+        bestBs = t;
+      }
+    }
+  }
+  if (best < 0 || bestBs <= 1.2F * rootBs)
+  {
+    return std::nullopt;
+  }
+  // One root voxel at the centre of the end cap: every trace then converges to one point.
+  return tipStart(grid, clusters[best]);
+}
+
+std::uint32_t ClusterStage::tipStart(const VoxelGrid& grid, const Cluster& c)
+{
+  const std::uint64_t lin = grid.nearestVoxel(c.centroid());
+  return grid.mask.test(lin) ? static_cast<std::uint32_t>(lin) : c.bestVoxel;
+}
+
+} // namespace skeleton
+} // namespace vtouch

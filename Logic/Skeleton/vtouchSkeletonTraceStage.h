@@ -1,0 +1,43 @@
+// Private to Logic/Skeleton: stage 4 of vtouch::VoxelCoder, the tree of paths from the tips.
+#pragma once
+
+#include "vtouchSkeletonTracer.h"
+
+#include <cstddef>
+
+namespace vtouch
+{
+namespace skeleton
+{
+
+/// Back-tracing from every tip (Zhou & Toga 1999; Yi & Hayward §3.1: "center-adjusted shortest
+/// lines that connect the two ends of each branch"): each cluster without higher neighbours
+/// (a local maximum of the SS code), farthest first, is traced down to the skeleton traced so far
+/// or to the root. Traces shorter than a spur (VoxelCodingParameters::minimumBranchLength local
+/// radii) are dropped; a branch that reaches its parent across a thick junction is joined along
+/// its own axis.
+///
+/// Input: the tracer's codes and cluster graph of one component. Output: the component's tree of
+/// paths in the tracer's draft.
+class TraceStage
+{
+public:
+  TraceStage(SkeletonTracer& tracer, double minimumBranchLength);
+
+  /// Traces the component's tips; returns the number of paths it emitted.
+  std::size_t run();
+
+private:
+  /// A branch trace that reaches the skeleton across a thick junction touches it early, on the
+  /// crotch side: the corner is cut. Extend the branch's own axis (its centres between `far` and
+  /// `near` radii of the touch) to the parent path and attach there, dropping the trace voxels
+  /// within `near` radii of the touch (appendSkeletonPoint bridges the gap with a straight voxel
+  /// line).
+  void joinAlongBranchAxis(Trace& t, double junctionRadius);
+
+  SkeletonTracer& tracer;
+  double minimumBranchLength; // in local radii
+};
+
+} // namespace skeleton
+} // namespace vtouch
