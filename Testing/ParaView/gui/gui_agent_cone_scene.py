@@ -48,12 +48,38 @@ def main():
         _restart_sweep_when_resized(view, session)
 
 
-def _restart_sweep_when_resized(view, session, restarts=3):
+def _restart_sweep_when_resized(view, session, restarts=3, end_restarts=20, still_s=3.0):
     """The sweep's hand track is the path's screen projection at Start. The dock panels appear
     after this script and narrow the view, so restart the sweep (with the renderer's real size)
-    when a render shows a new size; the agent display pushes the camera to the session anyway."""
+    when a render shows a new size; the agent display pushes the camera to the session anyway.
+    The sweep also restarts when the agent has stood on one point for `still_s` (the path's end:
+    on a loaded machine the first screenshots may come after the hand has arrived there, where
+    the helix's end runs away from the viewer and the cone's red sides are hidden)."""
+    import time
     renderer = view.GetRenderer()
     started = [tuple(renderer.GetSize())]
+    still = {"point": None, "since": time.monotonic(), "restarts": 0}
+
+    def at_rest():
+        point = session.GetAgentState().get("point")
+        now = time.monotonic()
+        if point != still["point"]:
+            still.update(point=point, since=now)
+            return False
+        return now - still["since"] > still_s and still["restarts"] < end_restarts
+
+    def on_timer(_interactor, _event):
+        # A still agent draws no frame: a twice-a-second timer of the view's (Qt) interactor.
+        if session.IsRunning() and at_rest():
+            still["restarts"] += 1
+            still["since"] = time.monotonic()
+            session.Stop()
+            session.Start()
+
+    interactor = view.GetInteractor()
+    if interactor is not None:
+        interactor.AddObserver("TimerEvent", on_timer)
+        interactor.CreateRepeatingTimer(500)
 
     def on_end(_window, _event):
         size = tuple(renderer.GetSize())
