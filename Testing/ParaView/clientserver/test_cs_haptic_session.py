@@ -6,9 +6,12 @@ Run as ``pvpython test_cs_haptic_session.py`` with VESSELTOUCH_PLUGIN set, on a 
 reference. Then ``mpiexec -np 2 pvserver`` starts on 127.0.0.1 with a free port
 (vtouch_pvserver.ParallelServer: every wait timed out, the process group ended, the port freed),
 pvpython connects and loads the plugin on both sides from the same file, and:
-- VesselCenterline runs on the server on the same phantom; the skeleton delivered to the client
-  (vesseltouch/delivery.py: gathered on rank 0, moved to the client) has the built-in run's paths
-  and, within 0.1 voxel, its points;
+- the phantom's volume, saved as .vti, opens on the server in pieces (each rank holds part of the
+  tree, whose vessels cross the piece boundary);
+- VesselCenterline runs on the server; the skeleton delivered to the client (vesseltouch/
+  delivery.py: gathered on rank 0, moved to the client) has the built-in run's paths and, within
+  0.1 voxel, its points (the filter codes the whole volume on the first rank until the
+  distributed extraction of item 2 lands: vtkVesselTouchCenterlineFilter::RequestUpdateExtent);
 - vesseltouch.logic() returns a session that lives in the client process only (its proxy's
   location is the client) and binds to that skeleton;
 - a scripted trace (simulated device, the hand sweeping path 0, RunOffline) runs in the client:
@@ -18,10 +21,10 @@ pvpython connects and loads the plugin on both sides from the same file, and:
 Exits non-zero on any failure.
 """
 
-import math
 import os
+import shutil
 import sys
-import time
+import tempfile
 
 import numpy as np
 
@@ -55,9 +58,12 @@ def paths(polydata):
     return sorted(summary), points
 
 
-def builtin_reference():
+def builtin_reference(volume_path):
+    """The built-in run's centerline; writes the phantom's volume to `volume_path` (.vti, which
+    ParaView's reader reads in pieces: on the server each rank holds a part of the tree)."""
     simple.LoadPlugin(PLUGIN, remote=False, ns=globals())
     phantom = VesselPhantom(**PHANTOM)  # noqa: F821 - from the plugin
+    simple.SaveData(volume_path, proxy=phantom)
     centerline = VesselCenterline(Input=phantom)  # noqa: F821
     centerline.UpdatePipeline()
     data = sm.Fetch(centerline)
@@ -84,12 +90,18 @@ def compare(reference, delivered, voxel_mm):
               "one (%.3f voxel)" % (worst / voxel_mm))
 
 
-def remote_session(reference, voxel_mm):
+def remote_session(reference, voxel_mm, volume_path):
     import vesseltouch
     from vesseltouch.delivery import is_remote
     check(is_remote(), "the connection is to a separate pvserver")
-    phantom = VesselPhantom(**PHANTOM)  # noqa: F821
-    centerline = VesselCenterline(Input=phantom)  # noqa: F821
+    volume = simple.OpenDataFile(volume_path)
+    volume.UpdatePipeline()
+    pieces = sm.Fetch(volume, 1)  # rank 1's piece of the volume
+    whole = volume.GetDataInformation().GetNumberOfPoints()
+    check(0 < pieces.GetNumberOfPoints() < whole,
+          "the volume is read in pieces across the ranks (rank 1 holds %d of %d voxels)"
+          % (pieces.GetNumberOfPoints(), whole))
+    centerline = VesselCenterline(Input=volume)  # noqa: F821
     centerline.UpdatePipeline()
     s = vesseltouch.logic()
     location = s.proxy.SMProxy.GetLocation()
@@ -123,7 +135,9 @@ def remote_session(reference, voxel_mm):
 
 
 def main():
-    reference, voxel_mm = builtin_reference()
+    folder = tempfile.mkdtemp(prefix="vtouch-cs-session-")
+    volume_path = os.path.join(folder, "tree.vti")
+    reference, voxel_mm = builtin_reference(volume_path)
     simple.Disconnect()
     server = ParallelServer(ranks=2)
     try:
@@ -134,7 +148,7 @@ def main():
         simple.LoadPlugin(PLUGIN, remote=False, ns=globals())
         check(sm.ActiveConnection.GetNumberOfDataPartitions() == 2,
               "the server has %d ranks, not 2" % sm.ActiveConnection.GetNumberOfDataPartitions())
-        remote_session(reference, voxel_mm)
+        remote_session(reference, voxel_mm, volume_path)
         simple.Disconnect()
         code = server.stop()
         check(code is not None, "the server did not exit after the client disconnected")
@@ -144,6 +158,7 @@ def main():
         print("server output:\n" + server.output())
     finally:
         server.stop()
+        shutil.rmtree(folder, ignore_errors=True)
     CHECK.finish()
 
 
