@@ -18,6 +18,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -227,12 +228,56 @@ int vtkVesselTouchCenterlineFilter::FillInputPortInformation(int, vtkInformation
   return 1;
 }
 
+namespace
+{
+/// The piece of the output this process is asked for (0 built in and on rank 0).
+int requestedPiece(vtkInformationVector* outputVector)
+{
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  return info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+}
+} // namespace
+
+int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* in = inputVector[0]->GetInformationObject(0);
+  if (!in || !in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return 1;
+  }
+  int extent[6];
+  in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  if (requestedPiece(outputVector) > 0)
+  {
+    const int none[6] = { 0, -1, 0, -1, 0, -1 };
+    std::copy(none, none + 6, extent);
+  }
+  else
+  {
+    // The whole volume as one piece: readers that split by piece number read it all.
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  }
+  in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+  in->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  return 1;
+}
+
 int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (output && requestedPiece(outputVector) > 0)
+  {
+    output->Initialize(); // the first piece codes the whole volume (RequestUpdateExtent)
+    return 1;
+  }
   this->DownsampleFactorUsed = 0;
   this->LastRunKey.clear();
   this->LastRunPrecomputed = false;

@@ -130,6 +130,13 @@ protected:
   ~vtkVesselTouchCenterlineFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// In a parallel pipeline (pvserver under MPI) the first piece asks for the whole volume and
+  /// the others for none: the Q-skeleton is coded whole on one rank, never as separate pieces
+  /// whose paths would break at every piece boundary. Distributed coding with ghost layers and
+  /// stitching (issue 19, item 2) replaces this; until then memory does not fall with ranks.
+  int RequestUpdateExtent(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

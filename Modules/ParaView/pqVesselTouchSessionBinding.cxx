@@ -190,8 +190,10 @@ void pqVesselTouchSessionBinding::setCenterline(vtkSMProxy* centerline, unsigned
   {
     return;
   }
+  vtkSMProxy* input =
+    this->Delivery.deliver(pqActiveObjects::instance().activeServer(), centerline, port);
   this->writeProperties(
-    [&](vtkSMProxy* proxy) { vtkSMPropertyHelper(proxy, "Input").Set(centerline, port); });
+    [&](vtkSMProxy* proxy) { vtkSMPropertyHelper(proxy, "Input").Set(input, port); });
 }
 
 void pqVesselTouchSessionBinding::copyCamera(pqRenderView* view)

@@ -9,6 +9,8 @@
 #ifndef pqVesselTouchSessionBinding_h
 #define pqVesselTouchSessionBinding_h
 
+#include "pqVesselTouchCenterlineDelivery.h"
+
 #include <QObject>
 #include <QPointer>
 
@@ -41,6 +43,8 @@ public:
   vtkSMProxy* ensureSession();
 
   /// Sets the session's centerline input (a VesselCenterline, or port 1 of a VesselPhantom).
+  /// Connected to a pvserver, the centerline is delivered to the client first, where the
+  /// session lives (pqVesselTouchCenterlineDelivery); call it again after a new extraction.
   void setCenterline(vtkSMProxy* centerline, unsigned int port);
   /// Copies the camera and size of `view` into the session's camera properties.
   void copyCamera(pqRenderView* view);
@@ -69,6 +73,7 @@ private:
   static bool isSession(pqPipelineSource* source);
 
   QPointer<pqPipelineSource> Source;
+  pqVesselTouchCenterlineDelivery Delivery;
   vtkNew<vtkEventQtSlotConnect> Connector;
   bool Pushing = false;
   bool Pending = false;

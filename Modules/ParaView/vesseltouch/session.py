@@ -33,6 +33,7 @@ import math
 
 from paraview import servermanager, simple
 
+from .delivery import CenterlineDelivery, is_remote
 from .haptic_parameters import HapticParameterAccess, _key
 
 __all__ = ["HapticSession", "logic", "SESSION_NAME", "FORCE_LAW_ALIASES", "DEVICES"]
@@ -93,8 +94,9 @@ class HapticSession(HapticParameterAccess):
     """
 
     def __init__(self, centerline=None, view=None, proxy=None, registrationName=None):
+        self._delivery = None
         if proxy is None:
-            proxy = self._create_proxy(_centerline_port(centerline), registrationName)
+            proxy = self._create_proxy(self._delivered(centerline), registrationName)
         self.proxy = proxy
         if centerline is not None:
             if view is not None:
@@ -119,6 +121,16 @@ class HapticSession(HapticParameterAccess):
             return create(**params)
         finally:
             simple.SetActiveSource(active)
+
+    def _delivered(self, centerline):
+        """The port the session takes as input: the centerline itself built in; connected to a
+        pvserver, its copy delivered to the client, where the session lives (delivery.py)."""
+        port = _centerline_port(centerline)
+        if port is None or not is_remote():
+            self._delivery = None
+            return port
+        self._delivery = CenterlineDelivery(port)
+        return self._delivery.port
 
     # --- helpers ---------------------------------------------------------------------------
     def _set(self, **properties):
@@ -157,7 +169,7 @@ class HapticSession(HapticParameterAccess):
     # --- scene -----------------------------------------------------------------------------
     def SetCenterline(self, centerline):
         """Uses this centerline (VesselCenterline, VesselPhantom or an output port)."""
-        self._set(Input=_centerline_port(centerline))
+        self._set(Input=self._delivered(centerline))
 
     def Bind(self, centerline, view=None):
         """SetCenterline(), then the camera of ``view`` (SetCameraFromView) or, without a view,
@@ -477,8 +489,11 @@ class HapticSession(HapticParameterAccess):
         px), state (0 exploring, 1 tracing), path, point, position (N x 3, world mm),
         target_force and force (N x 2, N; force as sent to the device)."""
         from paraview.vtk.util.numpy_support import vtk_to_numpy
+        if self._delivery is not None:
+            self._delivery.update()  # every process, before the client's session reads it
         self.proxy.UpdatePipeline()
-        table = servermanager.Fetch(self.proxy)
+        # The session's output is in this process in both modes (the proxy is client-side).
+        table = self.proxy.GetClientSideObject().GetOutputDataObject(0)
         log = {}
         for column, key in _LOG_COLUMNS.items():
             array = table.GetColumnByName(column) if table is not None else None
