@@ -437,3 +437,36 @@ TEST(TubeSectionTracker, KeepsATubeThatCrossesAThinPlate)
   EXPECT_TRUE(whole) << "one path runs through the plate on the tube's axis";
   EXPECT_LE(shareOff(s, { { a, b } }, 1.5), 0.0);
 }
+
+TEST(TubeLikenessPruner, RemovesTheSpurIntoABallAndKeepsAThinBranchOfTheSameTube)
+{
+  // A tube of radius 2.5 along x; a ball of radius 6 touches it from +y (0.5 voxel overlap, as
+  // VesselPhantom's blobs); a branch of radius 1.5, 15 voxels long, leaves it toward -y. The
+  // coder's spur rule measures a spur against the tube it joins (2.5 x 2.5 voxels) and keeps the
+  // one into the ball; the bulge rule measures it against its own section (2.5 x 6 voxels).
+  const Dims dims{ 72, 64, 32 };
+  const Vec3 a{ 3, 40, 14 }, b{ 68, 40, 14 };
+  const Vec3 ball{ 44, 40 + 2.5 + 6.0 - 0.5, 14 };
+  const Vec3 fork{ 24, 40, 14 }, tip{ 24, 22, 14 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      return segmentDistance(p, a, b) <= 2.5 || (p - ball).norm() <= 6.0 ||
+             segmentDistance(p, fork, tip) <= 1.5;
+    });
+  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  const std::vector<std::array<Vec3, 2>> vessels{ { a, b }, { fork, tip } };
+  const double offBefore = shareOff(s, vessels, 2.5);
+  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
+  const double offAfter = shareOff(s, vessels, 2.5);
+  std::cout << "ball on a tube: paths removed " << r.pathsRemoved << " (bulges " << r.bulgesRemoved
+            << "), points off the vessels " << offBefore << " -> " << offAfter << ", tube covered "
+            << coverage(s, a, b, 4.0, 2.5) << ", branch covered "
+            << coverage(s, fork, tip, 4.0, 1.5) << "\n";
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_GT(offBefore, 0.0); // the coder did run a path into the ball
+  EXPECT_GE(r.bulgesRemoved, 1);
+  EXPECT_EQ(offAfter, 0.0);
+  EXPECT_GE(coverage(s, a, b, 4.0, 2.5), 0.99);
+  EXPECT_GE(coverage(s, fork, tip, 4.0, 1.5), 0.99); // the thin branch is no bulge
+}
