@@ -1,5 +1,5 @@
-// Issue 16, "keep the path centred where clutter touches the vessel" and "split a path where its
-// cross-sections stop being tube-like": after the voxel coder has coded the raw-angiogram
+// Issue 16, item 2 ("where a vessel touches bone, venous sinuses, fat or other tissue at vessel
+// intensities, the network stops at the tube"): after the voxel coder has coded the raw-angiogram
 // candidate region, each path is judged by its cross-sections on the volume (the vessel's
 // intensity range), and where they are not those of its own tube (a plate, a blob, bone or
 // another vessel touches it, and the coder's centre - the ridge of the merged region's distance
