@@ -254,6 +254,17 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
         hasChild[static_cast<std::size_t>(j.parentPath)] = 1;
       }
     }
+    // The longest path: the network holds it (never a piece beside the network).
+    double longestPath_mm = 0.0;
+    for (const SkeletonPath& path : skeleton.paths)
+    {
+      double length = 0.0;
+      for (std::size_t k = 1; k < path.points.size(); ++k)
+      {
+        length += (path.points[k].position_World_mm - path.points[k - 1].position_World_mm).norm();
+      }
+      longestPath_mm = std::max(longestPath_mm, length);
+    }
     // Mostly not tube-like (a plate's path), whether or not others hang on it.
     std::vector<char> plate(skeleton.paths.size(), 0), unjudged(skeleton.paths.size(), 0);
     for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
@@ -300,7 +311,12 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
             widest = std::max(widest, width[i][k]);
           }
         }
-        bulge = widest > 0.0 && length < s.bulgeFactor * widest * voxel_mm;
+        // A piece joined to nothing (both ends free: what a cut of step 4 leaves beside the
+        // network) must clear the spur length at each of its ends; never the longest path (a
+        // single vessel is one path with two free ends too).
+        const bool piece = path.head.junction < 0 && path.tail.junction < 0 && !hasChild[i] &&
+                           length < longestPath_mm;
+        bulge = widest > 0.0 && length < (piece ? 2.0 : 1.0) * s.bulgeFactor * widest * voxel_mm;
         result.bulgesRemoved += bulge && !hasChild[i] ? 1 : 0;
       }
       if (!hasChild[i] && (plate[i] || (unjudged[i] && onPlate) || bulge))

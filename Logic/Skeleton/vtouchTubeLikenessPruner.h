@@ -24,7 +24,8 @@
 // them are judged and mostly not tube-like (only the part on the clutter goes). A path with a free
 // end that carries no other path and is shorter than 2.5 times its own largest section radius
 // (the median of 32 rays in the section plane, beyond the junction's zone) is a bulge - a blob or
-// a knob on a vessel - and goes too (the coder's spur rule on the branch's own calibre).
+// a knob on a vessel - and goes too (the coder's spur rule on the branch's own calibre); a piece
+// joined to nothing, unless it is the longest path, must clear twice that (a spur at each end).
 #pragma once
 
 #include "vtouchQSkeleton.h"
@@ -61,7 +62,8 @@ public:
     int minimumTrimPoints = 3;    ///< a free end is trimmed when this many end points are not tube
     /// A branch ending free that is shorter than this many of its own largest section radii
     /// (beyond the junction's zone) is a bulge (a blob, a knob) and goes; 0 = off. The coder's
-    /// spur length (MinimumBranchLength, 2.5 radii of the vessel joined) on the branch's own.
+    /// spur length (MinimumBranchLength, 2.5 radii of the vessel joined) on the branch's own. A
+    /// path free at both ends (not the longest) must clear twice this.
     double bulgeFactor = 2.5;
   };
 

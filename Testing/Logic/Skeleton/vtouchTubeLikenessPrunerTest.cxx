@@ -470,3 +470,38 @@ TEST(TubeLikenessPruner, RemovesTheSpurIntoABallAndKeepsAThinBranchOfTheSameTube
   EXPECT_GE(coverage(s, a, b, 4.0, 2.5), 0.99);
   EXPECT_GE(coverage(s, fork, tip, 4.0, 1.5), 0.99); // the thin branch is no bulge
 }
+
+TEST(TubeLikenessPruner, RemovesAShortPieceOnABallBesideTheNetworkAndKeepsALoneShortVessel)
+{
+  // What a cut of TubeSectionTracker can leave: a piece joined to nothing on a ball of radius 4
+  // (12 voxels long: more than one spur length, 2.5 x 4, less than one at each end), beside a
+  // vessel of radius 1.5 drawn 40 voxels long. Alone, a short thick vessel (radius 4, 12 long) is
+  // the network and stays.
+  const Dims dims{ 72, 48, 32 };
+  const Vec3 ball{ 20, 24, 16 }, a{ 34, 8, 16 }, b{ 34, 40, 16 };
+  const Vec3 p0{ 14, 24, 16 }, p1{ 26, 24, 16 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      const Vec3 e{ (p.x - ball.x) / 7.0, (p.y - ball.y) / 4.0, (p.z - ball.z) / 4.0 };
+      return e.norm() <= 1.0 || segmentDistance(p, a, b) <= 1.5;
+    });
+  QSkeleton s;
+  s.paths.push_back(handPath({ a, b }, 1.5));
+  s.paths.push_back(handPath({ p0, p1 }, 4.0));
+  for (std::size_t i = 0; i < s.paths.size(); ++i)
+  {
+    s.paths[i].id = static_cast<int>(i);
+  }
+  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
+  EXPECT_EQ(r.bulgesRemoved, 1);
+  ASSERT_EQ(s.paths.size(), 1u);
+  EXPECT_NEAR(s.paths[0].points.front().position_World_mm.x, 34.0, 1e-9); // the vessel stays
+
+  QSkeleton alone;
+  alone.paths.push_back(handPath({ p0, p1 }, 4.0));
+  alone.paths[0].id = 0;
+  const auto r2 = TubeLikenessPruner::prune(alone, TubeLikenessPruner::foreground(mask), kUnit);
+  EXPECT_EQ(r2.pathsRemoved, 0);
+  EXPECT_EQ(alone.paths.size(), 1u);
+}
