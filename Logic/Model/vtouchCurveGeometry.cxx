@@ -274,6 +274,29 @@ std::vector<CurveSample> computeCurveGeometry(const std::vector<Vec3>& points,
   return out;
 }
 
+CurveGeometryWindows skeletonPathWindows(double medianRadius_mm,
+  double largestSpacing_mm,
+  double smoothingWindow_mm)
+{
+  // Windows scale with the vessel. Positions average over two diameters: the axis cannot carry
+  // detail shorter than the lumen (wall bumps move the medial axis by a fraction of a radius),
+  // and a cubic fit keeps the bends. Derivatives need more support.
+  const double scale = std::max(2.0 * largestSpacing_mm, medianRadius_mm);
+  CurveGeometryWindows windows;
+  windows.position_mm = smoothingWindow_mm > 0.0 ? smoothingWindow_mm
+                        : smoothingWindow_mm < 0.0
+                          ? 0.0
+                          : 4.0 * std::max(largestSpacing_mm, medianRadius_mm);
+  // Automatic windows widen to three diameters where the path is straight enough
+  // (CurveGeometryWindows::widestPosition_mm): more of the wall's bumps average out there.
+  windows.widestPosition_mm =
+    smoothingWindow_mm == 0.0 ? 6.0 * std::max(largestSpacing_mm, medianRadius_mm) : 0.0;
+  const double base = smoothingWindow_mm > 0.0 ? smoothingWindow_mm : scale;
+  windows.curvature_mm = 6.0 * base;
+  windows.torsion_mm = 7.0 * base;
+  return windows;
+}
+
 void applyCurveGeometry(SkeletonPath& path,
   const CurveGeometryWindows& windows,
   const std::vector<std::size_t>& corners)

@@ -32,6 +32,16 @@ struct CurveGeometryWindows
   double torsion_mm = 14.0;  ///< cubic fit for torsion (third derivative)
 };
 
+/// The windows VoxelCodingSkeletonFilter smooths a Q-skeleton path with (its SmoothingWindow
+/// property, mm): > 0 the cubic over +-W, the quartic over +-6 W and the cubic for torsion over
+/// +-7 W; 0 (automatic) positions over 4 max(largest spacing, R), widening to 6 max(...) where the
+/// path is straight, derivatives over 6 S and 7 S with S = max(2 largest spacings, R); < 0
+/// positions kept (derivatives as automatic). R is the path's median radius (mm). Anything that
+/// edits a path's positions after the filter (TubeSectionTracker) re-smooths it with these.
+CurveGeometryWindows skeletonPathWindows(double medianRadius_mm,
+  double largestSpacing_mm,
+  double smoothingWindow_mm);
+
 /// Smooths `points` and differentiates the smoothed curve.
 ///
 /// At each point, weighted least-squares polynomials in arc length are fitted to the points within

@@ -13,98 +13,15 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 
-/// Nearest-voxel lookups of the mask at world points.
-class MaskSampler
-{
-public:
-  MaskSampler(const TubeLikenessPruner::Foreground& fg, const TubeLikenessPruner::Geometry& g)
-    : Fg(fg)
-  {
-    const auto& d = g.direction;
-    // Inverse of the direction matrix (general 3x3, by cofactors).
-    const double det = d[0] * (d[4] * d[8] - d[5] * d[7]) - d[1] * (d[3] * d[8] - d[5] * d[6]) +
-                       d[2] * (d[3] * d[7] - d[4] * d[6]);
-    const double inv = std::abs(det) > 1e-12 ? 1.0 / det : 0.0;
-    const double c[9] = { d[4] * d[8] - d[5] * d[7],
-      d[2] * d[7] - d[1] * d[8],
-      d[1] * d[5] - d[2] * d[4],
-      d[5] * d[6] - d[3] * d[8],
-      d[0] * d[8] - d[2] * d[6],
-      d[2] * d[3] - d[0] * d[5],
-      d[3] * d[7] - d[4] * d[6],
-      d[1] * d[6] - d[0] * d[7],
-      d[0] * d[4] - d[1] * d[3] };
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        this->ToIndex[3 * r + k] = c[3 * r + k] * inv / g.spacing_mm[r];
-      }
-      this->Origin[r] = g.origin_mm[r];
-    }
-  }
-
-  bool inside(const Vec3& p) const
-  {
-    const double q[3] = { p.x - this->Origin[0], p.y - this->Origin[1], p.z - this->Origin[2] };
-    std::int64_t idx[3];
-    const auto& dims = this->Fg.dims;
-    for (int r = 0; r < 3; ++r)
-    {
-      const double c = this->ToIndex[3 * r] * q[0] + this->ToIndex[3 * r + 1] * q[1] +
-                       this->ToIndex[3 * r + 2] * q[2];
-      if (!(c > -0.5 && c < static_cast<double>(dims[r]) - 0.5))
-      {
-        return false;
-      }
-      idx[r] = static_cast<std::int64_t>(std::lround(c));
-    }
-    return this->Fg.inside(
-      static_cast<std::uint64_t>(idx[0] + dims[0] * (idx[1] + dims[1] * idx[2])));
-  }
-
-  /// How far (mm) the mask runs from `start` along unit `dir`, up to `limit_mm` (steps `step_mm`).
-  double runLength(const Vec3& start, const Vec3& dir, double limit_mm, double step_mm) const
-  {
-    if (!this->inside(start))
-    {
-      return 0.0;
-    }
-    double s = 0.0;
-    while (s < limit_mm && this->inside(start + dir * (s + step_mm)))
-    {
-      s += step_mm;
-    }
-    return s;
-  }
-
-private:
-  const TubeLikenessPruner::Foreground& Fg;
-  double ToIndex[9];
-  double Origin[3];
-};
-
-double smallestSpacing(const TubeLikenessPruner::Geometry& g)
-{
-  return std::max(1e-9, std::min({ g.spacing_mm[0], g.spacing_mm[1], g.spacing_mm[2] }));
-}
-
-bool sectionIsTubeLike(const MaskSampler& sampler,
+bool sectionIsTubeLike(const SectionSampler& sampler,
   double voxel_mm,
   const Vec3& p,
   const Vec3& tangent,
   double radius_mm,
   const TubeLikenessPruner::Settings& s)
 {
-  const double tn = tangent.norm();
-  const Vec3 t = tn > 1e-12 ? tangent * (1.0 / tn) : Vec3{ 0.0, 0.0, 1.0 };
-  // Section basis u, v (t's smallest component picks the helper axis).
-  const double ax = std::abs(t.x), ay = std::abs(t.y), az = std::abs(t.z);
-  const Vec3 e =
-    ax <= ay && ax <= az ? Vec3{ 1, 0, 0 } : (ay <= az ? Vec3{ 0, 1, 0 } : Vec3{ 0, 0, 1 });
-  Vec3 u = e - t * t.dot(e);
-  u = u * (1.0 / u.norm());
-  const Vec3 v = t.cross(u);
+  Vec3 t, u, v; // section basis
+  SectionSampler::sectionBasis(tangent, t, u, v);
   const double r = std::max(0.5, radius_mm / voxel_mm); // voxels
   const double longExtent = r + std::max(s.longFactor * r, s.longMinimum_voxels);
   const double bandBound = r + std::max(s.bandMargin_voxels, r);
@@ -148,6 +65,35 @@ bool sectionIsTubeLike(const MaskSampler& sampler,
     }
   }
   return true;
+}
+
+/// The section's radius (voxels): the median of `rays` ray runs through the foreground from p in
+/// the plane normal to the tangent (+ half a step), up to 2 R + 4 voxels.
+double sectionRadius(const SectionSampler& sampler,
+  double voxel_mm,
+  const Vec3& p,
+  const Vec3& tangent,
+  double radius_mm,
+  const TubeLikenessPruner::Settings& s)
+{
+  Vec3 t, u, v;
+  SectionSampler::sectionBasis(tangent, t, u, v);
+  const double cap = (2.0 * std::max(0.5, radius_mm / voxel_mm) + 4.0) * voxel_mm;
+  const double step = 0.25 * voxel_mm;
+  const int rays = std::max(4, s.rays);
+  std::vector<double> run(static_cast<std::size_t>(rays), 0.0);
+  if (!sampler.inside(p))
+  {
+    return 0.0;
+  }
+  for (int k = 0; k < rays; ++k)
+  {
+    const double a = 2.0 * kPi * k / rays;
+    run[static_cast<std::size_t>(k)] =
+      (sampler.runLength(p, u * std::cos(a) + v * std::sin(a), cap, step) + 0.5 * step) / voxel_mm;
+  }
+  std::nth_element(run.begin(), run.begin() + rays / 2, run.end());
+  return run[static_cast<std::size_t>(rays / 2)];
 }
 
 enum class Status : std::uint8_t
@@ -271,9 +217,9 @@ bool TubeLikenessPruner::isTubeLikeSection(const Foreground& mask,
   double radius_mm,
   const Settings& settings)
 {
-  const MaskSampler sampler(mask, geometry);
+  const SectionSampler sampler(mask, geometry);
   return sectionIsTubeLike(
-    sampler, smallestSpacing(geometry), position_World_mm, tangent_World, radius_mm, settings);
+    sampler, sampler.voxel_mm(), position_World_mm, tangent_World, radius_mm, settings);
 }
 
 TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
@@ -282,16 +228,19 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
   const Settings& s)
 {
   Result result;
-  const MaskSampler sampler(mask, geometry);
-  const double voxel_mm = smallestSpacing(geometry);
+  const SectionSampler sampler(mask, geometry);
+  const double voxel_mm = sampler.voxel_mm();
   // Each section once: removing paths changes only which points are near a junction.
   std::vector<std::vector<bool>> tubeLike(skeleton.paths.size());
+  std::vector<std::vector<double>> width(skeleton.paths.size());
   for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
   {
     for (const SkeletonPoint& q : skeleton.paths[i].points)
     {
       tubeLike[i].push_back(
         sectionIsTubeLike(sampler, voxel_mm, q.position_World_mm, q.tangent_World, q.radius_mm, s));
+      width[i].push_back(
+        sectionRadius(sampler, voxel_mm, q.position_World_mm, q.tangent_World, q.radius_mm, s));
     }
   }
   for (;;)
@@ -304,6 +253,17 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
       {
         hasChild[static_cast<std::size_t>(j.parentPath)] = 1;
       }
+    }
+    // The longest path: the network holds it (never a piece beside the network).
+    double longestPath_mm = 0.0;
+    for (const SkeletonPath& path : skeleton.paths)
+    {
+      double length = 0.0;
+      for (std::size_t k = 1; k < path.points.size(); ++k)
+      {
+        length += (path.points[k].position_World_mm - path.points[k - 1].position_World_mm).norm();
+      }
+      longestPath_mm = std::max(longestPath_mm, length);
     }
     // Mostly not tube-like (a plate's path), whether or not others hang on it.
     std::vector<char> plate(skeleton.paths.size(), 0), unjudged(skeleton.paths.size(), 0);
@@ -332,7 +292,34 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
             onPlate || (parent != static_cast<int>(i) && plate[static_cast<std::size_t>(parent)]);
         }
       }
-      if (!hasChild[i] && (plate[i] || (unjudged[i] && onPlate)))
+      // A bulge: a branch that ends free, shorter than bulgeFactor times its own largest section
+      // radius beyond the junction's zone (a blob or a knob on a vessel, not a vessel).
+      bool bulge = false;
+      const SkeletonPath& path = skeleton.paths[i];
+      if (s.bulgeFactor > 0.0 && (path.head.junction < 0 || path.tail.junction < 0))
+      {
+        double length = 0.0, widest = 0.0;
+        for (std::size_t k = 0; k < path.points.size(); ++k)
+        {
+          if (k > 0)
+          {
+            length +=
+              (path.points[k].position_World_mm - path.points[k - 1].position_World_mm).norm();
+          }
+          if (status[i][k] != Status::Unjudged)
+          {
+            widest = std::max(widest, width[i][k]);
+          }
+        }
+        // A piece joined to nothing (both ends free: what a cut of step 4 leaves beside the
+        // network) must clear the spur length at each of its ends; never the longest path (a
+        // single vessel is one path with two free ends too).
+        const bool piece = path.head.junction < 0 && path.tail.junction < 0 && !hasChild[i] &&
+                           length < longestPath_mm;
+        bulge = widest > 0.0 && length < (piece ? 2.0 : 1.0) * s.bulgeFactor * widest * voxel_mm;
+        result.bulgesRemoved += bulge && !hasChild[i] ? 1 : 0;
+      }
+      if (!hasChild[i] && (plate[i] || (unjudged[i] && onPlate) || bulge))
       {
         remove[i] = 1;
         any = true;
@@ -346,14 +333,17 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
     }
     removePaths(skeleton, remove);
     std::vector<std::vector<bool>> keptTube;
+    std::vector<std::vector<double>> keptWidth;
     for (std::size_t i = 0; i < remove.size(); ++i)
     {
       if (!remove[i])
       {
         keptTube.push_back(std::move(tubeLike[i]));
+        keptWidth.push_back(std::move(width[i]));
       }
     }
     tubeLike = std::move(keptTube);
+    width = std::move(keptWidth);
   }
   // Free ends that run onto a plate: back to the last tube-like point (only the part on the
   // clutter).

@@ -21,10 +21,15 @@
 // tube-like is removed when no other path hangs on it; a path with fewer judged points goes with
 // such a path it hangs on (the bridges of a loop around a plate); repeated until none goes. A free
 // end is trimmed back to its last two consecutive tube-like points when at least 3 points beyond
-// them are judged and mostly not tube-like (only the part on the clutter goes).
+// them are judged and mostly not tube-like (only the part on the clutter goes). A path with a free
+// end that carries no other path and is shorter than 2.5 times its own largest section radius
+// (the median of 32 rays in the section plane, beyond the junction's zone) is a bulge - a blob or
+// a knob on a vessel - and goes too (the coder's spur rule on the branch's own calibre); a piece
+// joined to nothing, unless it is the longest path, must clear twice that (a spur at each end).
 #pragma once
 
 #include "vtouchQSkeleton.h"
+#include "vtouchSectionSampler.h"
 #include "vtouchSparseVesselMask.h"
 #include "vtouchVector.h"
 
@@ -39,13 +44,8 @@ namespace vtouch
 class TubeLikenessPruner
 {
 public:
-  /// The mask's grid: world = origin + direction * (index * spacing) (ITK's and VTK's frame).
-  struct Geometry
-  {
-    std::array<double, 3> origin_mm{ 0.0, 0.0, 0.0 };
-    std::array<double, 3> spacing_mm{ 1.0, 1.0, 1.0 };
-    std::array<double, 9> direction{ 1, 0, 0, 0, 1, 0, 0, 0, 1 }; ///< row-major
-  };
+  /// The mask's grid (vtouchSectionSampler.h).
+  using Geometry = SectionGeometry;
 
   struct Settings
   {
@@ -60,26 +60,25 @@ public:
     double notTubeFraction = 0.5; ///< a path goes when this share of its judged points is not tube
     int minimumJudgedPoints = 2;  ///< fewer judged points: unjudged (goes with a plate parent)
     int minimumTrimPoints = 3;    ///< a free end is trimmed when this many end points are not tube
+    /// A branch ending free that is shorter than this many of its own largest section radii
+    /// (beyond the junction's zone) is a bulge (a blob, a knob) and goes; 0 = off. The coder's
+    /// spur length (MinimumBranchLength, 2.5 radii of the vessel joined) on the branch's own. A
+    /// path free at both ends (not the longest) must clear twice this.
+    double bulgeFactor = 2.5;
   };
 
   struct Result
   {
     int pathsRemoved = 0;
+    int bulgesRemoved = 0; ///< of pathsRemoved: bulges
     int endsTrimmed = 0;
     std::size_t pointsRemoved = 0;
   };
 
-  /// What the sections are taken of: inside(linear index, x fastest) over a grid of `dims`.
-  struct Foreground
-  {
-    std::array<std::int64_t, 3> dims{ 0, 0, 0 };
-    std::function<bool(std::uint64_t)> inside;
-  };
+  /// What the sections are taken of (vtouchSectionSampler.h).
+  using Foreground = SectionForeground;
   /// A mask as the foreground (the mask must outlive the result).
-  static Foreground foreground(const SparseVesselMask& mask)
-  {
-    return { mask.dims(), [&mask](std::uint64_t lin) { return mask.test(lin); } };
-  }
+  static Foreground foreground(const SparseVesselMask& mask) { return SectionForeground::of(mask); }
 
   /// True when the foreground's section at position_World_mm normal to tangent_World is tube-like.
   static bool isTubeLikeSection(const Foreground& foreground,

@@ -1,7 +1,7 @@
 #include "vtkVesselTouchCenterlineFilter.h"
 
 #include "vtouchCandidateRegionRunner.h"
-#include "vtouchTubeLikenessPruner.h"
+#include "vtouchRawSkeletonRefinement.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include "vtkCellArray.h"
@@ -26,6 +26,7 @@
 #include <itkImportImageFilter.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <memory>
 #include <new>
@@ -87,6 +88,51 @@ typename itk::Image<T, 3>::Pointer importImage(vtkImageData* image, T* data)
     data, static_cast<itk::SizeValueType>(dims[0]) * dims[1] * dims[2], false);
   importer->Update();
   return importer->GetOutput();
+}
+
+/// The volume in [lower, upper] as the foreground the raw path's sections are taken of (typed
+/// lookups; other scalar types through vtkDataArray).
+vtouch::SectionForeground rangeForeground(vtkDataArray* scalars,
+  std::array<std::int64_t, 3> dims,
+  double lower,
+  double upper)
+{
+  vtouch::SectionForeground fg;
+  fg.dims = dims;
+  const auto typed = [&](auto* data)
+  {
+    fg.inside = [data, lower, upper](std::uint64_t lin)
+    {
+      const double v = static_cast<double>(data[lin]);
+      return v >= lower && v <= upper;
+    };
+  };
+  void* data = scalars->GetVoidPointer(0);
+  switch (scalars->GetDataType())
+  {
+    case VTK_FLOAT:
+      typed(static_cast<const float*>(data));
+      break;
+    case VTK_DOUBLE:
+      typed(static_cast<const double*>(data));
+      break;
+    case VTK_UNSIGNED_CHAR:
+      typed(static_cast<const unsigned char*>(data));
+      break;
+    case VTK_SHORT:
+      typed(static_cast<const short*>(data));
+      break;
+    case VTK_UNSIGNED_SHORT:
+      typed(static_cast<const unsigned short*>(data));
+      break;
+    default:
+      fg.inside = [scalars, lower, upper](std::uint64_t lin)
+      {
+        const double v = scalars->GetComponent(static_cast<vtkIdType>(lin), 0);
+        return v >= lower && v <= upper;
+      };
+  }
+  return fg;
 }
 
 /// Runs the ITK filter; throws itk::ExceptionObject (itk::ProcessAborted when aborted).
@@ -467,10 +513,10 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     }
     if (mask)
     {
-      // Raw-angiogram path only (issue 16, item 2): paths whose cross-sections are not
-      // tube-like (plates) go; binary masks and the override are untouched.
-      const auto t0 = std::chrono::steady_clock::now();
-      vtouch::TubeLikenessPruner::Geometry geometry;
+      // Raw-angiogram path only (issue 16): stretches where clutter touches a vessel are
+      // re-traced on the tube's own sections or cut, then paths whose cross-sections are not
+      // tube-like go; binary masks and the override are untouched.
+      vtouch::SectionGeometry geometry;
       input->GetOrigin(geometry.origin_mm.data());
       input->GetSpacing(geometry.spacing_mm.data());
       if (vtkMatrix3x3* m = input->GetDirectionMatrix())
@@ -485,19 +531,23 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
       }
       // Sections of the volume in the range (not of the candidate region: the neck cut keeps
       // a plate's rims, which are bars of their own; the plate around them shows in the image).
-      vtouch::TubeLikenessPruner::Foreground inRange;
-      inRange.dims = { dims[0], dims[1], dims[2] };
-      inRange.inside = [scalars, lower, upper](std::uint64_t lin)
-      {
-        const double v = scalars->GetComponent(static_cast<vtkIdType>(lin), 0);
-        return v >= lower && v <= upper;
-      };
-      const auto pruned = vtouch::TubeLikenessPruner::prune(skeleton, inRange, geometry);
-      candidateSeconds.emplace_back(
-        "tubePrune", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      const vtouch::SectionForeground inRange =
+        rangeForeground(scalars, { dims[0], dims[1], dims[2] }, lower, upper);
+      const vtouch::RawSkeletonRefinement refined =
+        vtouch::RawSkeletonRefinement::apply(skeleton, inRange, geometry, this->SmoothingWindow);
+      candidateSeconds.emplace_back("tubeTrack", refined.trackSeconds);
+      candidateSeconds.emplace_back("tubePrune", refined.pruneSeconds);
+      vtkNew<vtkIntArray> retraced;
+      retraced->SetName("ContactStretchesRetraced");
+      retraced->InsertNextValue(refined.tracked.stretchesTracked);
+      output->GetFieldData()->AddArray(retraced);
+      vtkNew<vtkIntArray> cut;
+      cut->SetName("ClutterStretchesCut");
+      cut->InsertNextValue(refined.tracked.stretchesCut);
+      output->GetFieldData()->AddArray(cut);
       vtkNew<vtkIntArray> removed;
       removed->SetName("NonTubularPathsRemoved");
-      removed->InsertNextValue(pruned.pathsRemoved);
+      removed->InsertNextValue(refined.pruned.pathsRemoved);
       output->GetFieldData()->AddArray(removed);
     }
     fillOutput(skeleton, output);

@@ -11,7 +11,7 @@ measured by Utilities/bench/centerline_metrics.py against the true tree (port 1)
   max(1.5 voxels, radius) of the extraction),
   mean distance of the matched extraction to the true axis <= 0.3 voxel,
   no extracted point more than 1.5 voxels outside every true vessel (none on the clutter).
-Registered DISABLED until the raw-intensity extraction meets it (see Docs/PERFORMANCE.md).
+The numbers of these two cases and of other seeds are in Docs/CENTERLINES.md, "Raw angiograms".
 """
 import os
 import sys

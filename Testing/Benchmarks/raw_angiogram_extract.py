@@ -11,6 +11,7 @@ cases.json is a list of cases:
   {"tag": "n128_s1_g20", "phantom": {"Dimensions": [128, 128, 128], "Seed": 1,
                                      "NoiseStandardDeviation": 20, ...VesselPhantom properties}}
   {"tag": "cta_aorta", "file": ".../aorta.mha", "seed_mm": [x, y, z]}
+  {"tag": "tof", "file": ".../chris_MRA.nii.gz", "seed_voxel": [i, j, k]}   (world from the image)
 A phantom is a VesselPhantom with Shape "Raw angiogram" (the other properties as given); its seed
 is the first point of the true tree (port 1), on the root. For each case DIR/<tag>.npz holds the
 extraction (points, line offsets), the truth (phantom: points, radius, line offsets), spacing,
@@ -68,7 +69,14 @@ def run_case(case, out_dir, keep_volume):
     else:
         source = simple.OpenDataFile(case["file"])
         source.UpdatePipeline()
-        seed = list(case["seed_mm"])
+        if "seed_voxel" in case:
+            image = servermanager.Fetch(source)
+            m = image.GetDirectionMatrix()
+            direction = np.array([[m.GetElement(r, c) for c in range(3)] for r in range(3)])
+            seed = list(np.array(image.GetOrigin()) + direction @ (
+                np.array(case["seed_voxel"], float) * np.array(image.GetSpacing())))
+        else:
+            seed = list(case["seed_mm"])
     record["phantom_s"] = time.perf_counter() - t0
     image = servermanager.Fetch(source)
     volume = volume_array(image)
@@ -101,7 +109,9 @@ def run_case(case, out_dir, keep_volume):
             record["field." + name] = values
     record["paths"] = len(lines)
     conn, offsets = lines_to_offsets(lines)
+    m = image.GetDirectionMatrix()
     arrays = dict(points=points, conn=conn, offsets=offsets,
+                  direction=np.array([[m.GetElement(r, c) for c in range(3)] for r in range(3)]),
                   spacing=np.array(image.GetSpacing(), float),
                   origin=np.array(image.GetOrigin(), float), mip_z=volume.max(axis=0),
                   seed=np.array(seed, float))

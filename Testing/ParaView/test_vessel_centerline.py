@@ -145,10 +145,12 @@ if os.path.exists(CTA):
     print("raw CTA: range [%g, %g], %d paths; reference within 1 mm %.3f, 2 mm %.3f, mean %.2f mm"
           % (lower, fd.GetArray("IntensityRangeUsed").GetValue(1), poly.GetNumberOfLines(),
              within1, within2, dist.mean()))
-    # Issue 16 asks >= 0.95 within 1 mm; the raw mask's bifurcation keeps it at ~0.88 (the VMTK
-    # level set reaches 0.95, test AortaLevelSetMatchesVmtkCenterline): floors, not the target.
-    check.true(within1 >= 0.85, "reference within 1 mm of the extraction: %.3f >= 0.85" % within1)
-    check.true(within2 >= 0.95, "reference within 2 mm of the extraction: %.3f >= 0.95" % within2)
+    # Issue 16 asks >= 0.95 within 1 mm; reached 0.878 by this measure (nearest output point;
+    # 0.917 along the polylines, RawAortaCtaFromASeedAloneCoversTheVmtkReference): floors at what
+    # is reached, not the target. The misses: VMTK's two centerlines 2-7 mm apart in the aorta's
+    # lowest centimetre, the seed's end and the reference's cut top end (Docs/CENTERLINES.md).
+    check.true(within1 >= 0.87, "reference within 1 mm of the extraction: %.3f >= 0.87" % within1)
+    check.true(within2 >= 0.96, "reference within 2 mm of the extraction: %.3f >= 0.96" % within2)
     # Topology on the part the reference covers: its three ends are reached, and exactly one
     # bifurcation there has both branches running on along the reference (the iliac one); other
     # junctions there are side branches leaving it, or the seed's own split.

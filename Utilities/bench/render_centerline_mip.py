@@ -3,12 +3,14 @@
 (no range typed) beside scikit-image's skeletonize_3d on an Otsu mask, for Docs/centerlines/.
 
     /usr/bin/python3 Utilities/bench/render_centerline_mip.py --build BUILD [--out Docs/centerlines]
-        [--cases phantom cta]
+        [--cases phantom cta tof]
 
 phantom: the RawAngiogram VesselPhantom, 256^3, seed 1, Gaussian noise 20
          (-> bench_raw_phantom_vs_skimage.png);
-cta:     the shared raw CTA vmtk-aorta/aorta.mha seeded on VMTK's reference
-         (-> bench_raw_cta_aorta_vs_skimage.png).
+cta:     the shared raw CTA vmtk-aorta/aorta.mha seeded on VMTK's reference's first point
+         (-> bench_raw_cta_aorta_vs_skimage.png);
+tof:     the shared TOF-MRA tof-mra-willis/chris_MRA.nii.gz seeded on the basilar artery (voxel
+         95, 123, 15), VesselCenterline alone (-> raw_tof_willis.png).
 Each picture: the MIP along z, and over it the extraction (red; on the phantom, yellow where a
 point is more than 1.5 voxels outside every true vessel, and blue where the true axis is not
 covered: the misses; on the CTA, VMTK's reference in green).
@@ -35,7 +37,39 @@ CASES = {
                                                "AngiogramSegments": 200}},
                 "bench_raw_phantom_vs_skimage.png"),
     "cta": (None, "bench_raw_cta_aorta_vs_skimage.png"),
+    "tof": ({"tag": "tof", "file": os.path.join(ROOT, "..", "shared", "data", "tof-mra-willis",
+                                                "chris_MRA.nii.gz"),
+             "seed_voxel": [95, 123, 15]}, "raw_tof_willis.png"),
 }
+
+
+def render_tof(data, record, path):
+    """The TOF-MRA's axial MIP with VesselCenterline's points and the seed (no reference)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    mip = data["mip_z"]
+    inverse = np.linalg.inv(data["direction"])
+    ijk = (inverse @ (data["points"] - data["origin"]).T).T / data["spacing"]
+    fig, ax = plt.subplots(figsize=(4.2, 5.6))
+    ax.imshow(mip, cmap="gray", origin="lower", vmin=0, vmax=np.percentile(mip, 99.5),
+              interpolation="nearest")
+    ax.scatter(ijk[:, 0], ijk[:, 1], s=3.0, c="red", linewidths=0,
+               label="VesselCenterline (seed only)")
+    seed = CASES["tof"][0]["seed_voxel"]
+    ax.plot([seed[0]], [seed[1]], "c+", ms=10, mew=1.5, label="seed (basilar)")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.set_xlim(0, mip.shape[1] - 1)
+    ax.set_ylim(0, mip.shape[0] - 1)
+    ax.set_title("TOF-MRA (MRIcroGL chris_MRA, CC BY-NC 4.0), axial MIP:\ncenterlines from one "
+                 "seed on the basilar artery, range estimated (%d paths)" % record["paths"],
+                 fontsize=7)
+    ax.legend(loc="lower right", fontsize=6, markerscale=1.5, framealpha=0.8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
 
 
 def to_pixels(points_mm, origin, spacing, direction):
@@ -86,6 +120,12 @@ def render(build, which, out_dir, tmp):
                     "--keep-volume"], check=True)
     data = np.load(os.path.join(tmp, case["tag"] + ".npz"))
     record = json.load(open(os.path.join(tmp, case["tag"] + ".json")))
+    if which == "tof":
+        os.makedirs(out_dir, exist_ok=True)
+        path = os.path.join(out_dir, name)
+        render_tof(data, record, path)
+        print("wrote", path)
+        return
     spacing, origin = data["spacing"], data["origin"]
     direction = np.array([-1.0, -1.0, 1.0]) if which == "cta" else np.ones(3)
     points = data["points"]
@@ -131,8 +171,9 @@ def render(build, which, out_dir, tmp):
                              "VMTK reference"),
                             (to_pixels(pts, origin, spacing, direction), "red", 1.0,
                              "centerline")]))
-        title = ("Raw CTA (vmtk-aorta/aorta.mha), one seed in the aorta: VesselCenterline (%s "
-                 "range) and skimage on an Otsu mask (%.0f)" % (record["range_mode"], otsu))
+        title = ("Raw CTA (vmtk-aorta/aorta.mha), one seed (VMTK's reference's first point, in "
+                 "the right iliac): VesselCenterline (%s range) and skimage on an Otsu mask (%.0f)"
+                 % (record["range_mode"], otsu))
     os.makedirs(out_dir, exist_ok=True)
     path = os.path.join(out_dir, name)
     draw(path, data["mip_z"], panels, title)

@@ -1,4 +1,5 @@
 // Real data: the VMTK aorta level set against VMTK's reference centerline, and the raw CTA.
+#include "vtouchRawSkeletonRefinement.h"
 #include "vtouchVesselCandidateRegion.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
@@ -190,17 +191,40 @@ TEST(VoxelCodingSkeletonFilter, RawAortaCtaFromASeedAloneCoversTheVmtkReference)
   image->TransformIndexToPhysicalPoint(start, seed);
   filter->SetSeedPoint(seed);
   filter->Update();
-  const QSkeleton& s = filter->GetSkeleton();
+  // What VesselCenterline does after coding on the raw path: the tube's own sections re-trace
+  // or cut the stretches clutter touches, then non-tube-like paths go (on the volume in range).
+  QSkeleton s = filter->GetSkeleton();
+  SectionGeometry geometry;
+  for (unsigned r = 0; r < 3; ++r)
+  {
+    geometry.origin_mm[r] = image->GetOrigin()[r];
+    geometry.spacing_mm[r] = image->GetSpacing()[r];
+    for (unsigned c = 0; c < 3; ++c)
+    {
+      geometry.direction[3 * r + c] = image->GetDirection()[r][c];
+    }
+  }
+  const float* voxels = image->GetBufferPointer();
+  const double lower = region.range.lower, upper = region.range.upper;
+  const SectionForeground inRange{ view.dims, [voxels, lower, upper](std::uint64_t lin) {
+                                    return voxels[lin] >= lower && voxels[lin] <= upper;
+                                  } };
+  const RawSkeletonRefinement refined = RawSkeletonRefinement::apply(s, inRange, geometry, 0.0);
   EXPECT_EQ(s.validate(), "");
   const test::Topology t = test::topology(s, 5.0);
   const Comparison c = compare(s, reference);
   std::cout << "raw CTA from a seed, range [" << region.range.lower << ", " << region.range.upper
             << "]: vessel voxels " << filter->GetNumberOfVesselVoxels() << ", paths "
             << s.paths.size() << ", ends " << t.endPoints << ", bifurcations " << t.bifurcations
+            << "; re-traced " << refined.tracked.stretchesTracked << ", cut "
+            << refined.tracked.stretchesCut << ", removed " << refined.pruned.pathsRemoved
             << "; reference within 1 mm " << c.coveredWithin1mm << "\n";
-  // Issue 16 asks 0.95 within 1 mm; the raw mask's bifurcation holds it near 0.88 (the VMTK level
-  // set reaches 0.95 in AortaLevelSetMatchesVmtkCenterline): a floor, not the target.
-  EXPECT_GE(c.coveredWithin1mm, 0.85);
+  // Issue 16 asks 0.95 within 1 mm; reached 0.917 (the floor below). The misses: VMTK's two
+  // centerlines run 2-7 mm apart over the aorta's lowest centimetre above the iliac carina (28 of
+  // the 409 reference points), where the Q-skeleton has one trunk path and the left iliac joins it
+  // at the carina (the seed, the root, is in the right iliac); the seed's own end and the
+  // reference's cut top end miss by 1.0-1.3 mm. See Docs/CENTERLINES.md, "Raw angiograms".
+  EXPECT_GE(c.coveredWithin1mm, 0.91);
   EXPECT_EQ(t.loops, 0); // a tree: no false ring through tissue at vessel intensity
 }
 

@@ -1,6 +1,10 @@
-// TubeLikenessPruner on tiny masks made in code, coded by the real voxel coder from a seed: a tube,
-// a thin diagonal tube and a Y stay whole; a plate touching a tube loses its paths, the tube stays.
+// TubeLikenessPruner and TubeSectionTracker on tiny masks made in code, coded by the real voxel
+// coder from a seed (or drawn by hand): a tube, a thin diagonal tube and a Y stay whole; a plate
+// touching a tube loses its paths and the tube stays; where a plate or a ball touches a tube the
+// path is put back on the tube's axis; a stretch drawn over a plate between two vessels is cut.
 #include "vtouchTubeLikenessPruner.h"
+#include "vtouchRawSkeletonRefinement.h"
+#include "vtouchTubeSectionTracker.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include <gtest/gtest.h>
@@ -221,4 +225,283 @@ TEST(TubeLikenessPruner, RemovesThePathsOfAPlateTouchingATubeAndKeepsTheTube)
   // Within the tube's radius (the recall: max(1.5 voxels, radius)): where the plate
   // overlaps it, the coded axis of the union leans ~2 voxels toward the plate.
   EXPECT_GE(coverage(s, a, b, 4.0, 2.5), 0.99);
+}
+
+// ---- TubeSectionTracker: the tube's own cross-sections where clutter touches it ----
+
+namespace
+{
+/// Largest distance (voxels) from the axis a-b of the skeleton's points whose projection on the
+/// axis lies between `from` and `to` voxels from a (the stretch a contact could pull).
+double worstOffAxis(const QSkeleton& s, const Vec3& a, const Vec3& b, double from, double to)
+{
+  const Vec3 axis = (b - a) * (1.0 / (b - a).norm());
+  double worst = 0.0;
+  for (const SkeletonPath& path : s.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      const double t = (q.position_World_mm - a).dot(axis);
+      if (t >= from && t <= to && segmentDistance(q.position_World_mm, a, b) < 6.0)
+      {
+        worst = std::max(worst, segmentDistance(q.position_World_mm, a, b));
+      }
+    }
+  }
+  return worst;
+}
+
+/// A path drawn by hand through `polyline` (one point per voxel of arc length, tangents from
+/// neighbours, radius `radius`), free at both ends.
+SkeletonPath handPath(const std::vector<Vec3>& polyline, double radius)
+{
+  SkeletonPath path;
+  for (std::size_t i = 0; i + 1 < polyline.size(); ++i)
+  {
+    const Vec3 d = polyline[i + 1] - polyline[i];
+    const int steps = std::max(1, static_cast<int>(std::lround(d.norm())));
+    for (int k = 0; k < steps; ++k)
+    {
+      SkeletonPoint q;
+      q.position_World_mm = polyline[i] + d * (static_cast<double>(k) / steps);
+      q.radius_mm = radius;
+      path.points.push_back(q);
+    }
+  }
+  SkeletonPoint last;
+  last.position_World_mm = polyline.back();
+  last.radius_mm = radius;
+  path.points.push_back(last);
+  const std::size_t n = path.points.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vec3 d = path.points[std::min(n - 1, i + 2)].position_World_mm -
+                   path.points[i >= 2 ? i - 2 : 0].position_World_mm;
+    path.points[i].tangent_World = d * (1.0 / d.norm());
+  }
+  path.points.front().label = path.points.back().label = PointLabel::EndPoint;
+  return path;
+}
+} // namespace
+
+TEST(TubeSectionTracker, LeavesATubeAndAYAsTheCoderCentredThem)
+{
+  const Dims dims{ 80, 64, 40 };
+  const Vec3 root{ 4, 32, 20 }, fork{ 40, 32, 20 }, left{ 76, 12, 20 }, right{ 76, 52, 20 };
+  const SparseVesselMask y = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      return segmentDistance(p, root, fork) <= 3.5 || segmentDistance(p, fork, left) <= 2.5 ||
+             segmentDistance(p, fork, right) <= 2.5;
+    });
+  QSkeleton s = code(dims, y, root + Vec3{ 2, 0, 0 });
+  const QSkeleton before = s;
+  const auto r = TubeSectionTracker::track(s, SectionForeground::of(y), kUnit);
+  std::cout << "Y: stretches " << r.stretches << ", re-traced " << r.stretchesTracked << ", cut "
+            << r.stretchesCut << "\n";
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(r.stretchesCut, 0);
+  ASSERT_EQ(s.paths.size(), before.paths.size());
+  EXPECT_EQ(s.junctions.size(), before.junctions.size());
+  // Whatever was re-traced stays on the branches' axes.
+  EXPECT_LE(shareOff(s, { { root, fork }, { fork, left }, { fork, right } }, 1.0), 0.02);
+}
+
+TEST(TubeSectionTracker, ReTracesATubeWhereAPlateLiesOnIt)
+{
+  // The pruner's scene: a plate 4 voxels thick lies on a tube of radius 2.5 (0.5 voxel overlap,
+  // as VesselPhantom's clutter). The coder's axis of the union leans ~2 voxels toward the plate
+  // along the contact; the tube's own section puts it back.
+  const Dims dims{ 72, 56, 40 };
+  const Vec3 a{ 3, 28, 14 }, b{ 68, 28, 14 };
+  const auto onPlate = [](const Vec3& p)
+  { return p.z >= 16 && p.z <= 19 && p.x >= 18 && p.x <= 53 && p.y >= 10 && p.y <= 45; };
+  const SparseVesselMask mask =
+    makeMask(dims, [&](const Vec3& p) { return segmentDistance(p, a, b) <= 2.5 || onPlate(p); });
+  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  const double leanBefore = worstOffAxis(s, a, b, 20.0, 48.0);
+  const auto r = RawSkeletonRefinement::apply(s, SectionForeground::of(mask), kUnit, 0.0);
+  const double leanAfter = worstOffAxis(s, a, b, 20.0, 48.0);
+  std::cout << "tube under a plate: re-traced " << r.tracked.stretchesTracked << ", cut "
+            << r.tracked.stretchesCut << ", paths removed " << r.pruned.pathsRemoved
+            << "; largest distance from the axis along the contact " << leanBefore << " -> "
+            << leanAfter << " voxels, covered " << coverage(s, a, b, 4.0, 2.5) << "\n";
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_GE(r.tracked.stretchesTracked, 1);
+  EXPECT_LE(leanAfter, 1.0);
+  // The recall: the axis within max(1.5 voxels, radius) of the extraction.
+  EXPECT_GE(coverage(s, a, b, 4.0, 2.5), 0.99);
+}
+
+TEST(TubeSectionTracker, ReTracesATubePastABallTouchingIt)
+{
+  // A ball of radius 6 touches a tube of radius 2 (0.5 voxel overlap): the merged region's
+  // distance ridge runs into the ball; the tube's section beside it does not.
+  const Dims dims{ 72, 48, 48 };
+  const Vec3 a{ 3, 20, 24 }, b{ 68, 20, 24 }, ball{ 36, 20 + 2.0 - 0.5 + 6.0, 24 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p) { return segmentDistance(p, a, b) <= 2.0 || (p - ball).norm() <= 6.0; });
+  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  const double before = worstOffAxis(s, a, b, 26.0, 46.0);
+  const auto r = RawSkeletonRefinement::apply(s, SectionForeground::of(mask), kUnit, 0.0);
+  const double after = worstOffAxis(s, a, b, 26.0, 46.0);
+  std::cout << "tube past a ball: re-traced " << r.tracked.stretchesTracked << ", paths removed "
+            << r.pruned.pathsRemoved << "; largest distance from the axis beside the ball "
+            << before << " -> " << after << " voxels, covered " << coverage(s, a, b, 4.0, 1.5)
+            << "\n";
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_LE(after, 1.0);
+  EXPECT_GE(coverage(s, a, b, 4.0, 1.5), 0.99);
+}
+
+TEST(TubeSectionTracker, CutsAStretchOnAPlateBetweenTwoVesselsAndKeepsThem)
+{
+  // Two tubes of radius 2 each end on the face of a plate 5 voxels thick; a path drawn from one
+  // tube over the plate's mid-sheet to the other (as the coder draws through clutter that joins
+  // two vessels). No tube crosses the plate: the stretch goes, both tubes stay.
+  const Dims dims{ 96, 48, 48 };
+  const Vec3 a0{ 3, 24, 24 }, a1{ 30, 24, 24 }, b0{ 66, 24, 24 }, b1{ 93, 24, 24 };
+  const auto onPlate = [](const Vec3& p)
+  { return p.x >= 31 && p.x <= 65 && p.y >= 4 && p.y <= 44 && p.z >= 22 && p.z <= 26; };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p) {
+      return segmentDistance(p, a0, a1) <= 2.0 || segmentDistance(p, b0, b1) <= 2.0 || onPlate(p);
+    });
+  QSkeleton s;
+  s.paths.push_back(handPath(
+    { a0 + Vec3{ 2, 0, 0 }, a1, Vec3{ 36, 34, 24 }, Vec3{ 60, 34, 24 }, b0, b1 - Vec3{ 2, 0, 0 } },
+    2.0));
+  s.paths[0].id = 0;
+  ASSERT_EQ(s.validate(), "");
+  const auto r = TubeSectionTracker::track(s, SectionForeground::of(mask), kUnit);
+  std::cout << "stretch on a plate between two vessels: cut " << r.stretchesCut << ", paths "
+            << s.paths.size() << ", points off the tubes "
+            << shareOff(s, { { a0, a1 }, { b0, b1 } }, 1.5) << "\n";
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(r.stretchesCut, 1);
+  EXPECT_EQ(s.paths.size(), 2u);
+  EXPECT_LE(shareOff(s, { { a0, a1 }, { b0, b1 } }, 1.5), 0.0);
+  EXPECT_GE(coverage(s, a0, a1, 4.0, 1.5), 0.95);
+  EXPECT_GE(coverage(s, b0, b1, 4.0, 1.5), 0.95);
+}
+
+TEST(TubeSectionTracker, KeepsAThinDiagonalTube)
+{
+  const Dims dims{ 48, 48, 48 };
+  const Vec3 c{ 4, 4, 4 }, d{ 42, 40, 38 };
+  const SparseVesselMask thin =
+    makeMask(dims, [&](const Vec3& p) { return segmentDistance(p, c, d) <= 0.9; });
+  QSkeleton t = code(dims, thin, c + Vec3{ 1, 1, 1 });
+  ASSERT_FALSE(t.empty());
+  const double before = coverage(t, c, d, 3.0, 1.5);
+  const auto r = TubeSectionTracker::track(t, SectionForeground::of(thin), kUnit);
+  EXPECT_EQ(t.validate(), "");
+  EXPECT_EQ(r.stretchesCut, 0);
+  EXPECT_GE(coverage(t, c, d, 3.0, 1.5), before);
+  EXPECT_LE(shareOff(t, { { c, d } }, 1.5), 0.0);
+}
+
+TEST(TubeSectionTracker, KeepsATubeThatCrossesAThinPlate)
+{
+  // A tube of radius 2 crosses a plate 5 voxels thick at right angles (a vessel through a thin
+  // bony wall): no wall of the tube shows inside the plate, but the tube's stretch there is no
+  // longer than the plate's section is wide, so it is not clutter: the tube's path stays whole
+  // (the paths the coder drew on the plate go).
+  const Dims dims{ 72, 48, 48 };
+  const Vec3 a{ 3, 24, 24 }, b{ 68, 24, 24 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      return segmentDistance(p, a, b) <= 2.0 ||
+             (p.x >= 34 && p.x <= 38 && p.y >= 4 && p.y <= 44 && p.z >= 4 && p.z <= 44);
+    });
+  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  const auto r = RawSkeletonRefinement::apply(s, SectionForeground::of(mask), kUnit, 0.0);
+  std::cout << "tube through a plate: re-traced " << r.tracked.stretchesTracked << ", cut "
+            << r.tracked.stretchesCut << ", paths removed " << r.pruned.pathsRemoved << ", covered "
+            << coverage(s, a, b, 4.0, 2.0) << "\n";
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_GE(coverage(s, a, b, 4.0, 2.0), 0.99);
+  bool whole = false;
+  for (const SkeletonPath& path : s.paths)
+  {
+    bool before = false, after = false;
+    for (const SkeletonPoint& q : path.points)
+    {
+      const bool on = segmentDistance(q.position_World_mm, a, b) <= 1.5;
+      before = before || (on && q.position_World_mm.x < 30);
+      after = after || (on && q.position_World_mm.x > 42);
+    }
+    whole = whole || (before && after);
+  }
+  EXPECT_TRUE(whole) << "one path runs through the plate on the tube's axis";
+  EXPECT_LE(shareOff(s, { { a, b } }, 1.5), 0.0);
+}
+
+TEST(TubeLikenessPruner, RemovesTheSpurIntoABallAndKeepsAThinBranchOfTheSameTube)
+{
+  // A tube of radius 2.5 along x; a ball of radius 6 touches it from +y (0.5 voxel overlap, as
+  // VesselPhantom's blobs); a branch of radius 1.5, 15 voxels long, leaves it toward -y. The
+  // coder's spur rule measures a spur against the tube it joins (2.5 x 2.5 voxels) and keeps the
+  // one into the ball; the bulge rule measures it against its own section (2.5 x 6 voxels).
+  const Dims dims{ 72, 64, 32 };
+  const Vec3 a{ 3, 40, 14 }, b{ 68, 40, 14 };
+  const Vec3 ball{ 44, 40 + 2.5 + 6.0 - 0.5, 14 };
+  const Vec3 fork{ 24, 40, 14 }, tip{ 24, 22, 14 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      return segmentDistance(p, a, b) <= 2.5 || (p - ball).norm() <= 6.0 ||
+             segmentDistance(p, fork, tip) <= 1.5;
+    });
+  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  const std::vector<std::array<Vec3, 2>> vessels{ { a, b }, { fork, tip } };
+  const double offBefore = shareOff(s, vessels, 2.5);
+  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
+  const double offAfter = shareOff(s, vessels, 2.5);
+  std::cout << "ball on a tube: paths removed " << r.pathsRemoved << " (bulges " << r.bulgesRemoved
+            << "), points off the vessels " << offBefore << " -> " << offAfter << ", tube covered "
+            << coverage(s, a, b, 4.0, 2.5) << ", branch covered "
+            << coverage(s, fork, tip, 4.0, 1.5) << "\n";
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_GT(offBefore, 0.0); // the coder did run a path into the ball
+  EXPECT_GE(r.bulgesRemoved, 1);
+  EXPECT_EQ(offAfter, 0.0);
+  EXPECT_GE(coverage(s, a, b, 4.0, 2.5), 0.99);
+  EXPECT_GE(coverage(s, fork, tip, 4.0, 1.5), 0.99); // the thin branch is no bulge
+}
+
+TEST(TubeLikenessPruner, RemovesAShortPieceOnABallBesideTheNetworkAndKeepsALoneShortVessel)
+{
+  // What a cut of TubeSectionTracker can leave: a piece joined to nothing on a ball of radius 4
+  // (12 voxels long: more than one spur length, 2.5 x 4, less than one at each end), beside a
+  // vessel of radius 1.5 drawn 40 voxels long. Alone, a short thick vessel (radius 4, 12 long) is
+  // the network and stays.
+  const Dims dims{ 72, 48, 32 };
+  const Vec3 ball{ 20, 24, 16 }, a{ 34, 8, 16 }, b{ 34, 40, 16 };
+  const Vec3 p0{ 14, 24, 16 }, p1{ 26, 24, 16 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      const Vec3 e{ (p.x - ball.x) / 7.0, (p.y - ball.y) / 4.0, (p.z - ball.z) / 4.0 };
+      return e.norm() <= 1.0 || segmentDistance(p, a, b) <= 1.5;
+    });
+  QSkeleton s;
+  s.paths.push_back(handPath({ a, b }, 1.5));
+  s.paths.push_back(handPath({ p0, p1 }, 4.0));
+  for (std::size_t i = 0; i < s.paths.size(); ++i)
+  {
+    s.paths[i].id = static_cast<int>(i);
+  }
+  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
+  EXPECT_EQ(r.bulgesRemoved, 1);
+  ASSERT_EQ(s.paths.size(), 1u);
+  EXPECT_NEAR(s.paths[0].points.front().position_World_mm.x, 34.0, 1e-9); // the vessel stays
+
+  QSkeleton alone;
+  alone.paths.push_back(handPath({ p0, p1 }, 4.0));
+  alone.paths[0].id = 0;
+  const auto r2 = TubeLikenessPruner::prune(alone, TubeLikenessPruner::foreground(mask), kUnit);
+  EXPECT_EQ(r2.pathsRemoved, 0);
+  EXPECT_EQ(alone.paths.size(), 1u);
 }

@@ -1,0 +1,742 @@
+#include "vtouchTubeSectionTracker.h"
+
+#include "vtouchTubeSectionParts.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace vtouch
+{
+
+using namespace tube_sections;
+
+namespace
+{
+struct Plan
+{
+  int first; ///< first point replaced
+  int last;  ///< last point replaced (inclusive); may be n - 1 (a free tail) or first - 1
+  std::vector<Vec3> positions;
+  double radiusFrom_mm, radiusTo_mm;
+  bool remove = false; ///< clutter: the points go (the path is split there or its end trimmed)
+  std::vector<Vec3> before{}; ///< remove: the tube's track kept before the cut
+  std::vector<Vec3> after{};  ///< remove: the tube's track kept after the cut
+};
+
+struct PointSection
+{
+  double s = 0.0;     ///< median ray (voxels)
+  bool round = false; ///< longest ray within the round-shape bound
+  bool zone = false;  ///< near a junction: not judged
+  bool clean = false;
+};
+
+struct PathJudgement
+{
+  std::vector<PointSection> sec;
+  std::vector<double> arc;          ///< arc length from the head (voxels)
+  std::vector<int> cuts;            ///< the path's ends and the points where others join
+  std::vector<int> vessel;          ///< piece between two cuts each point lies in
+  std::vector<double> vesselMedian; ///< per piece: the median s of its round sections
+  bool tube = false;                ///< has a clean run of >= 3 points: a vessel
+};
+
+/// Phase 1 (the header's 1-2): the sections of `path` and which of them are clean; the points
+/// judged and not clean are counted into `counts`.
+PathJudgement judgePath(const SkeletonPath& path,
+  const std::vector<int>& attachedPoints,
+  const std::vector<Zone>& zones,
+  const SectionSampler& sampler,
+  const TubeSectionTracker::Settings& s,
+  TubeSectionTracker::Result& counts)
+{
+  const double voxel = sampler.voxel_mm();
+  std::vector<double> rho;
+  const int n = static_cast<int>(path.points.size());
+  PathJudgement pj;
+  auto& sec = pj.sec;
+  auto& arc = pj.arc;
+  auto& cuts = pj.cuts;
+  auto& vessel = pj.vessel;
+  auto& vesselMedian = pj.vesselMedian;
+  // Sections.
+  sec.resize(static_cast<std::size_t>(n));
+  arc.assign(static_cast<std::size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i)
+  {
+    const SkeletonPoint& q = path.points[static_cast<std::size_t>(i)];
+    if (i > 0)
+    {
+      arc[static_cast<std::size_t>(i)] =
+        arc[static_cast<std::size_t>(i - 1)] +
+        (q.position_World_mm - path.points[static_cast<std::size_t>(i - 1)].position_World_mm)
+            .norm() /
+          voxel;
+    }
+    PointSection& ps = sec[static_cast<std::size_t>(i)];
+    for (const Zone& z : zones)
+    {
+      ps.zone = ps.zone || (q.position_World_mm - z.centre).norm() <= z.radius;
+    }
+    Vec3 t, u, v;
+    SectionSampler::sectionBasis(q.tangent_World, t, u, v);
+    const double R = std::max(0.5, q.radius_mm / voxel);
+    sectionRays(sampler, q.position_World_mm, u, v, 2.0 * R + 4.0, s, rho);
+    ps.s = median(rho);
+    const double longest = *std::max_element(rho.begin(), rho.end());
+    ps.round =
+      ps.s > 0.0 && longest <= ps.s + std::max(s.roundExcess_voxels, s.roundExcessFraction * ps.s);
+  }
+  // Vessels: the pieces of the path between the points where other paths join it.
+  cuts = { 0, std::max(0, n - 1) };
+  cuts.insert(cuts.end(), attachedPoints.begin(), attachedPoints.end());
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  vessel.assign(static_cast<std::size_t>(n), 0);
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
+  {
+    for (int i = cuts[c]; i <= cuts[c + 1]; ++i)
+    {
+      vessel[static_cast<std::size_t>(i)] = static_cast<int>(c);
+    }
+  }
+  // The tube's radius along each vessel: lower quartile of the round sections' s in a window.
+  vesselMedian.assign(cuts.size(), 0.0);
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
+  {
+    std::vector<double> x;
+    for (int i = cuts[c]; i <= cuts[c + 1]; ++i)
+    {
+      if (sec[static_cast<std::size_t>(i)].round)
+      {
+        x.push_back(sec[static_cast<std::size_t>(i)].s);
+      }
+    }
+    vesselMedian[c] = x.empty() ? 0.0 : median(x);
+  }
+  const auto window = [&](int i)
+  {
+    const int c = vessel[static_cast<std::size_t>(i)];
+    return std::max(s.radiusWindow_voxels, s.radiusWindowRadii * vesselMedian[c]);
+  };
+  for (int i = 0; i < n; ++i)
+  {
+    PointSection& ps = sec[static_cast<std::size_t>(i)];
+    if (ps.zone)
+    {
+      continue;
+    }
+    ++counts.pointsJudged;
+    const double w = window(i);
+    std::vector<double> x;
+    for (int j = 0; j < n; ++j)
+    {
+      // Across the points where other paths join: the coder joins paths on the clutter to
+      // the vessel inside it, and a vessel's piece between two such points is all clutter.
+      if (sec[static_cast<std::size_t>(j)].round &&
+          std::abs(arc[static_cast<std::size_t>(j)] - arc[static_cast<std::size_t>(i)]) <= w)
+      {
+        x.push_back(sec[static_cast<std::size_t>(j)].s);
+      }
+    }
+    const double tau = lowerQuartile(x);
+    ps.clean = ps.round && std::isfinite(tau) &&
+               ps.s <= tau + std::max(s.radiusExcess_voxels, s.radiusExcessFraction * tau);
+    counts.pointsNotClean += ps.clean ? 0 : 1;
+  }
+  for (int i = 0, run = 0; i < n && !pj.tube; ++i)
+  {
+    run = sec[static_cast<std::size_t>(i)].clean ? run + 1 : 0;
+    pj.tube = run >= s.minimumAnchorPoints;
+  }
+  return pj;
+}
+
+/// Phase 2 (the header's 2-4) on path `pi`: its stretches re-traced in place (paths joined inside
+/// one moved onto the track); the clutter stretches to remove go to `clutterCuts[pi]`.
+void retracePath(QSkeleton& skeleton,
+  std::size_t pi,
+  std::vector<PathJudgement>& judged,
+  const std::vector<std::vector<int>>& realJunctionPoints,
+  const std::vector<Zone>& zones,
+  const SectionSampler& sampler,
+  double largestSpacing,
+  const TubeSectionTracker::Settings& s,
+  TubeSectionTracker::Result& result,
+  std::vector<std::vector<std::pair<int, int>>>& clutterCuts)
+{
+  using Section = TubeSectionTracker::Section;
+  const double voxel = sampler.voxel_mm();
+  SkeletonPath& path = skeleton.paths[pi];
+  const int n = static_cast<int>(path.points.size());
+  auto& status = result.sections[pi];
+  status.assign(static_cast<std::size_t>(n), Section::Junction);
+  if (n < 3)
+  {
+    return;
+  }
+  PathJudgement& pj = judged[pi];
+  auto& sec = pj.sec;
+  auto& arc = pj.arc;
+  auto& vessel = pj.vessel;
+  auto& vesselMedian = pj.vesselMedian;
+  const auto window = [&](int i)
+  {
+    const int c = vessel[static_cast<std::size_t>(i)];
+    return std::max(s.radiusWindow_voxels, s.radiusWindowRadii * vesselMedian[c]);
+  };
+  const auto inWindow = [&](int i, int j, double w)
+  {
+    return vessel[static_cast<std::size_t>(j)] == vessel[static_cast<std::size_t>(i)] &&
+           std::abs(arc[static_cast<std::size_t>(j)] - arc[static_cast<std::size_t>(i)]) <= w;
+  };
+  // Anchors: the clean points, and an end attached to another path (the junction stays).
+  for (int i = 0; i < n; ++i)
+  {
+    const PointSection& ps = sec[static_cast<std::size_t>(i)];
+    status[static_cast<std::size_t>(i)] =
+      ps.zone ? Section::Junction : (ps.clean ? Section::Clean : Section::NotClean);
+  }
+  const auto anchor = [&](int i)
+  {
+    return sec[static_cast<std::size_t>(i)].clean || (i == 0 && path.head.junction >= 0) ||
+           (i == n - 1 && path.tail.junction >= 0);
+  };
+  // The tube's radius for a stretch: median s of the clean points on one side, within the
+  // window, of the anchor's vessel (of any vessel when that has none); NaN (no track) when
+  // fewer than 3 are clean there: a lone round section amid clutter is no vessel to follow.
+  const auto tubeRadius = [&](int from, int towards)
+  {
+    const double w = window(from);
+    for (const bool sameVessel : { true, false })
+    {
+      std::vector<double> x;
+      for (int j = 0; j < n; ++j)
+      {
+        const bool side = towards > from ? j <= from : j >= from;
+        const bool near =
+          sameVessel
+            ? inWindow(from, j, w)
+            : std::abs(arc[static_cast<std::size_t>(j)] - arc[static_cast<std::size_t>(from)]) <= w;
+        if (side && near && sec[static_cast<std::size_t>(j)].clean)
+        {
+          x.push_back(sec[static_cast<std::size_t>(j)].s);
+        }
+      }
+      if (static_cast<int>(x.size()) >= s.minimumAnchorPoints)
+      {
+        return median(x);
+      }
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  // The direction a track leaves an anchor in: the chord from the path's point about two voxels
+  // (or a radius) behind it, toward the stretch (`sign` +1: toward higher indices). The chord
+  // of the clean side, not the smoothed tangent: smoothing bends it toward the stretch.
+  const auto heading = [&](int from, int sign)
+  {
+    const double back = std::max(2.0, sec[static_cast<std::size_t>(from)].s);
+    int q = from;
+    while (q - sign >= 0 && q - sign < n &&
+           std::abs(arc[static_cast<std::size_t>(q)] - arc[static_cast<std::size_t>(from)]) < back)
+    {
+      q -= sign;
+    }
+    const Vec3 chord = path.points[static_cast<std::size_t>(from)].position_World_mm -
+                       path.points[static_cast<std::size_t>(q)].position_World_mm;
+    const Vec3 tangent = path.points[static_cast<std::size_t>(from)].tangent_World * sign;
+    return chord.norm() > 0.5 * voxel ? chord : tangent;
+  };
+  const double pathMedianRadius = [&]
+  {
+    std::vector<double> x;
+    for (const SkeletonPoint& q : path.points)
+    {
+      x.push_back(q.radius_mm);
+    }
+    return median(x);
+  }();
+
+  std::vector<Plan> plans;
+  // Stretches: runs of points between anchors that hold a judged point that is not clean.
+  // Junction zones inside a run are tracked through: the coder joined paths that run on the
+  // clutter to this one there; they are re-attached to the track.
+  int j = 0;
+  while (j < n)
+  {
+    if (anchor(j))
+    {
+      ++j;
+      continue;
+    }
+    int k = j;
+    bool judgedNotClean = false;
+    while (k < n && !anchor(k))
+    {
+      judgedNotClean = judgedNotClean || !sec[static_cast<std::size_t>(k)].zone;
+      ++k;
+    }
+    if (!judgedNotClean)
+    {
+      j = k;
+      continue; // a junction's zone between clean points: the coder's junction stays
+    }
+    ++result.stretches;
+    const std::size_t plansBefore = plans.size();
+    Track forwardTrack, backwardTrack; // of a stretch between two anchors
+    double rBackward = 0.0;
+    const bool freeHead = j == 0 && path.head.junction < 0;
+    const bool freeTail = k == n && path.tail.junction < 0;
+    const double stretchLength = (arc[static_cast<std::size_t>(std::min(k, n - 1))] -
+                                   arc[static_cast<std::size_t>(std::max(j - 1, 0))]) *
+                                 voxel;
+    const double maxLength = s.maximumTrackFactor * stretchLength + 4.0 * voxel;
+    if (j >= 1 && k <= n - 1)
+    {
+      // Between two anchors of the path: forward from A, else backward from B.
+      const int a = j - 1, b = k;
+      bool done = false;
+      const double rForward = tubeRadius(a, b);
+      if (std::isfinite(rForward) && rForward > 0.0)
+      {
+        std::vector<Target> targets;
+        for (int q = k; q < n; ++q)
+        {
+          if (anchor(q))
+          {
+            targets.push_back({ q, path.points[static_cast<std::size_t>(q)].position_World_mm });
+          }
+        }
+        const Track tr = follow(sampler,
+          path.points[static_cast<std::size_t>(a)].position_World_mm,
+          heading(a, +1),
+          rForward,
+          targets,
+          zones,
+          maxLength,
+          s);
+        forwardTrack = tr;
+        if (tr.hit >= 0)
+        {
+          const Vec3 to = path.points[static_cast<std::size_t>(tr.hit)].position_World_mm;
+          std::vector<Vec3> via(tr.centres.begin() + 1, tr.centres.end());
+          plans.push_back({ a + 1,
+            tr.hit - 1,
+            resampled(path.points[static_cast<std::size_t>(a)].position_World_mm, via, &to, voxel),
+            path.points[static_cast<std::size_t>(a)].radius_mm,
+            path.points[static_cast<std::size_t>(tr.hit)].radius_mm });
+          done = true;
+        }
+      }
+      rBackward = done ? 0.0 : tubeRadius(b, a);
+      if (!done && std::isfinite(rBackward) && rBackward > 0.0)
+      {
+        std::vector<Target> targets;
+        for (int q = j - 1; q >= 0; --q)
+        {
+          if (anchor(q))
+          {
+            targets.push_back({ q, path.points[static_cast<std::size_t>(q)].position_World_mm });
+          }
+        }
+        const Track tr = follow(sampler,
+          path.points[static_cast<std::size_t>(b)].position_World_mm,
+          heading(b, -1),
+          rBackward,
+          targets,
+          zones,
+          maxLength,
+          s);
+        backwardTrack = tr;
+        if (tr.hit >= 0)
+        {
+          const Vec3 to = path.points[static_cast<std::size_t>(b)].position_World_mm;
+          std::vector<Vec3> via(tr.centres.rbegin(), tr.centres.rend() - 1);
+          plans.push_back({ tr.hit + 1,
+            b - 1,
+            resampled(
+              path.points[static_cast<std::size_t>(tr.hit)].position_World_mm, via, &to, voxel),
+            path.points[static_cast<std::size_t>(tr.hit)].radius_mm,
+            path.points[static_cast<std::size_t>(b)].radius_mm });
+          done = true;
+        }
+      }
+      result.stretchesTracked += done ? 1 : 0;
+    }
+    else if (freeTail && j >= 1)
+    {
+      const int a = j - 1;
+      const double r = tubeRadius(a, n - 1);
+      if (std::isfinite(r) && r > 0.0)
+      {
+        const Track tr = follow(sampler,
+          path.points[static_cast<std::size_t>(a)].position_World_mm,
+          heading(a, +1),
+          r,
+          {},
+          zones,
+          stretchLength + voxel,
+          s);
+        if (tr.centres.size() > 1)
+        {
+          std::vector<Vec3> via(tr.centres.begin() + 1, tr.centres.end());
+          const double R = path.points[static_cast<std::size_t>(a)].radius_mm;
+          plans.push_back({ a + 1,
+            n - 1,
+            resampled(
+              path.points[static_cast<std::size_t>(a)].position_World_mm, via, nullptr, voxel),
+            R,
+            R });
+          result.stretchesTracked += 1;
+        }
+      }
+    }
+    else if (freeHead && k <= n - 1)
+    {
+      const int b = k;
+      const double r = tubeRadius(b, 0);
+      if (std::isfinite(r) && r > 0.0)
+      {
+        const Track tr = follow(sampler,
+          path.points[static_cast<std::size_t>(b)].position_World_mm,
+          heading(b, -1),
+          r,
+          {},
+          zones,
+          stretchLength + voxel,
+          s);
+        if (tr.centres.size() > 1)
+        {
+          std::vector<Vec3> via(tr.centres.begin() + 1, tr.centres.end());
+          std::vector<Vec3> pts = resampled(
+            path.points[static_cast<std::size_t>(b)].position_World_mm, via, nullptr, voxel);
+          std::reverse(pts.begin(), pts.end());
+          const double R = path.points[static_cast<std::size_t>(b)].radius_mm;
+          plans.push_back({ 0, b - 1, pts, R, R });
+          result.stretchesTracked += 1;
+        }
+      }
+    }
+    if (plans.size() == plansBefore)
+    {
+      // Not re-traced. Clutter when its sections are wide (a plate's or a blob's, not a thin
+      // vessel's noisy wall) and either mostly not round (a plate's band) or wider than the
+      // tube it left (a blob), over more than the structure's diameter + 2 voxels: a junction's
+      // elongated sections reach about a radius of the larger vessel on either side of it,
+      // and no more.
+      std::vector<double> widths;
+      int notRound = 0;
+      for (int q = j; q < k; ++q)
+      {
+        widths.push_back(sec[static_cast<std::size_t>(q)].s);
+        notRound += sec[static_cast<std::size_t>(q)].round ? 0 : 1;
+      }
+      const double width = median(widths);
+      const double length = (arc[static_cast<std::size_t>(std::min(k, n - 1))] -
+                             arc[static_cast<std::size_t>(std::max(j - 1, 0))]);
+      // The tube it left: the clean points' radius on either side (NaN at a free end).
+      double tube = std::numeric_limits<double>::quiet_NaN();
+      for (const double r :
+        { j >= 1 ? tubeRadius(j - 1, k) : tube, k <= n - 1 ? tubeRadius(k, j - 1) : tube })
+      {
+        tube = std::isfinite(r) && !(r >= tube) ? r : tube; // the smaller one
+      }
+      const bool wider = std::isfinite(tube) && width > tube + std::max(s.radiusExcess_voxels,
+                                                                 s.radiusExcessFraction * tube);
+      bool nearJunction = false;
+      for (const int q : realJunctionPoints[pi])
+      {
+        nearJunction = nearJunction || (q >= j - 1 && q <= k);
+      }
+      if (!nearJunction && k - j >= s.clutterMinimumPoints && (2 * notRound >= k - j || wider) &&
+          width >= s.clutterMinimumWidth_voxels && length > width + 2.0)
+      {
+        Plan cut;
+        cut.first = j;
+        cut.last = k - 1;
+        cut.radiusFrom_mm = path.points[static_cast<std::size_t>(std::max(j - 1, 0))].radius_mm;
+        cut.radiusTo_mm = path.points[static_cast<std::size_t>(std::min(k, n - 1))].radius_mm;
+        cut.remove = true;
+        // Where a track from an anchor followed the tube on beyond a junction's reach (the
+        // coder's path left the tube for the clutter), the tube's track stays: the piece
+        // before the cut ends, and the piece after it starts, where the tube stops.
+        const auto trackLength = [](const Track& tr)
+        {
+          double l = 0.0;
+          for (std::size_t q = 1; q < tr.centres.size(); ++q)
+          {
+            l += (tr.centres[q] - tr.centres[q - 1]).norm();
+          }
+          return l;
+        };
+        if (j >= 1 && forwardTrack.centres.size() > 1 &&
+            trackLength(forwardTrack) > 2.0 * (tubeRadius(j - 1, k) + 1.0) * voxel)
+        {
+          cut.before = resampled(forwardTrack.centres.front(),
+            std::vector<Vec3>(forwardTrack.centres.begin() + 1, forwardTrack.centres.end()),
+            nullptr,
+            voxel);
+        }
+        if (k <= n - 1 && backwardTrack.centres.size() > 1 && std::isfinite(rBackward) &&
+            trackLength(backwardTrack) > 2.0 * (rBackward + 1.0) * voxel)
+        {
+          cut.after = resampled(backwardTrack.centres.front(),
+            std::vector<Vec3>(backwardTrack.centres.begin() + 1, backwardTrack.centres.end()),
+            nullptr,
+            voxel);
+          std::reverse(cut.after.begin(), cut.after.end());
+        }
+        plans.push_back(std::move(cut));
+        ++result.stretchesCut;
+      }
+    }
+    j = k;
+  }
+  if (!plans.empty())
+  {
+    // Non-overlapping plans, applied from the last to the first (indices before stay valid).
+    std::sort(
+      plans.begin(), plans.end(), [](const Plan& x, const Plan& y) { return x.first < y.first; });
+    std::vector<Plan> kept;
+    for (Plan& p : plans)
+    {
+      if (kept.empty() || p.first > kept.back().last)
+      {
+        kept.push_back(std::move(p));
+      }
+    }
+    std::vector<std::pair<int, int>> changed; // new index ranges [first, last] of replaced points
+    std::vector<std::pair<int, int>> clutter; // new index ranges of clutter stretches to cut
+    for (auto it = kept.rbegin(); it != kept.rend(); ++it)
+    {
+      const Plan& p = *it;
+      const int removed = p.last - p.first + 1;
+      // A clutter cut: the kept tracks on either side and one point between them that goes
+      // (below, after the re-tracing), with whatever joined the clutter.
+      std::vector<Vec3> positions = p.positions;
+      int dummy = -1;
+      if (p.remove)
+      {
+        positions = p.before;
+        dummy = static_cast<int>(positions.size());
+        positions.push_back(path.points[static_cast<std::size_t>(p.first)].position_World_mm);
+        positions.insert(positions.end(), p.after.begin(), p.after.end());
+      }
+      const int added = static_cast<int>(positions.size());
+      std::vector<SkeletonPoint> fresh(static_cast<std::size_t>(added));
+      const double count = static_cast<double>(added + 1);
+      for (int q = 0; q < added; ++q)
+      {
+        SkeletonPoint& sp = fresh[static_cast<std::size_t>(q)];
+        sp.position_World_mm = positions[static_cast<std::size_t>(q)];
+        const double f = (q + 1) / count;
+        sp.radius_mm = dummy < 0 ? p.radiusFrom_mm + (p.radiusTo_mm - p.radiusFrom_mm) * f
+                                 : (q < dummy ? p.radiusFrom_mm : p.radiusTo_mm);
+        sp.label = PointLabel::Ordinary;
+      }
+      std::vector<int> moved(skeleton.junctions.size(), -1);
+      for (std::size_t ji = 0; ji < skeleton.junctions.size(); ++ji)
+      {
+        const Junction& jn = skeleton.junctions[ji];
+        if (jn.parentPath == static_cast<int>(pi) && jn.parentPoint >= p.first &&
+            jn.parentPoint <= p.last)
+        {
+          // A path joined inside the re-traced stretch: to the nearest point of the track (to
+          // the point that goes, in a clutter cut: it joined the clutter).
+          const Vec3 old = path.points[static_cast<std::size_t>(jn.parentPoint)].position_World_mm;
+          int best = dummy;
+          double bestDistance = std::numeric_limits<double>::infinity();
+          for (int q = 0; dummy < 0 && q < added; ++q)
+          {
+            const double d = (positions[static_cast<std::size_t>(q)] - old).norm();
+            if (d < bestDistance)
+            {
+              bestDistance = d;
+              best = q;
+            }
+          }
+          moved[ji] = best >= 0 ? p.first + best : std::max(0, p.first - 1);
+          ++result.junctionsMoved;
+        }
+      }
+      path.points.erase(path.points.begin() + p.first, path.points.begin() + p.last + 1);
+      path.points.insert(path.points.begin() + p.first, fresh.begin(), fresh.end());
+      status.erase(status.begin() + p.first, status.begin() + p.last + 1);
+      status.insert(status.begin() + p.first, static_cast<std::size_t>(added), Section::Retraced);
+      if (dummy >= 0)
+      {
+        status[static_cast<std::size_t>(p.first + dummy)] = Section::NotClean;
+      }
+      for (std::size_t ji = 0; ji < skeleton.junctions.size(); ++ji)
+      {
+        Junction& jn = skeleton.junctions[ji];
+        if (moved[ji] >= 0)
+        {
+          jn.parentPoint = moved[ji];
+        }
+        else if (jn.parentPath == static_cast<int>(pi) && jn.parentPoint > p.last)
+        {
+          jn.parentPoint += added - removed;
+        }
+      }
+      for (auto& c : changed)
+      {
+        c.first += added - removed;
+        c.second += added - removed;
+      }
+      for (auto& c : clutter)
+      {
+        c.first += added - removed;
+        c.second += added - removed;
+      }
+      if (dummy >= 0)
+      {
+        clutter.emplace_back(p.first + dummy, p.first + dummy);
+        if (dummy > 0)
+        {
+          changed.emplace_back(p.first, p.first + dummy - 1);
+        }
+        if (dummy + 1 < added)
+        {
+          changed.emplace_back(p.first + dummy + 1, p.first + added - 1);
+        }
+      }
+      else
+      {
+        changed.emplace_back(p.first, p.first + added - 1);
+      }
+    }
+    path.points.front().label =
+      path.head.junction >= 0 ? PointLabel::Bifurcation : PointLabel::EndPoint;
+    path.points.back().label =
+      path.tail.junction >= 0 ? PointLabel::Bifurcation : PointLabel::EndPoint;
+    // Re-smooth with the filter's windows: positions of the new points, derivatives around them.
+    std::vector<std::size_t> corners;
+    std::vector<Vec3> positions;
+    for (const SkeletonPoint& q : path.points)
+    {
+      positions.push_back(q.position_World_mm);
+    }
+    for (const Junction& jn : skeleton.junctions)
+    {
+      if (jn.parentPath == static_cast<int>(pi))
+      {
+        corners.push_back(static_cast<std::size_t>(jn.parentPoint));
+      }
+    }
+    const CurveGeometryWindows windows =
+      skeletonPathWindows(pathMedianRadius, largestSpacing, s.smoothingWindow_mm);
+    const std::vector<CurveSample> g = computeCurveGeometry(positions, windows, corners);
+    const int reach = static_cast<int>(std::ceil(windows.torsion_mm / voxel)) + 1;
+    const int m = static_cast<int>(path.points.size());
+    for (const auto& [first, last] : changed)
+    {
+      for (int q = std::max(0, first - reach); q <= std::min(m - 1, last + reach); ++q)
+      {
+        SkeletonPoint& sp = path.points[static_cast<std::size_t>(q)];
+        if (q >= first && q <= last)
+        {
+          sp.position_World_mm = g[static_cast<std::size_t>(q)].position;
+        }
+        sp.tangent_World = g[static_cast<std::size_t>(q)].tangent;
+        sp.curvature_per_mm = g[static_cast<std::size_t>(q)].curvature;
+        sp.torsion_per_mm = g[static_cast<std::size_t>(q)].torsion;
+      }
+    }
+    if (!clutter.empty())
+    {
+      clutterCuts[pi] = std::move(clutter);
+    }
+  }
+}
+
+} // namespace
+
+TubeSectionTracker::Result TubeSectionTracker::track(QSkeleton& skeleton,
+  const SectionForeground& foreground,
+  const SectionGeometry& geometry,
+  const Settings& s)
+{
+  Result result;
+  const SectionSampler sampler(foreground, geometry);
+  const double voxel = sampler.voxel_mm();
+  const double largestSpacing =
+    std::max({ geometry.spacing_mm[0], geometry.spacing_mm[1], geometry.spacing_mm[2] });
+
+  // Junction zones (as TubeLikenessPruner's) and each path's attachment points.
+  std::vector<Zone> zones;
+  std::vector<std::vector<int>> attached(skeleton.paths.size());
+  for (const Junction& j : skeleton.junctions)
+  {
+    const SkeletonPath& parent = skeleton.paths[static_cast<std::size_t>(j.parentPath)];
+    const SkeletonPoint& q = parent.points[static_cast<std::size_t>(j.parentPoint)];
+    const SkeletonPath& child = skeleton.paths[static_cast<std::size_t>(j.childPath)];
+    const SkeletonPoint& end =
+      j.childEnd == Junction::End::Head ? child.points.front() : child.points.back();
+    zones.push_back({ q.position_World_mm,
+      s.junctionZoneRadii * std::max(q.radius_mm, end.radius_mm) +
+        s.junctionZoneMargin_voxels * voxel,
+      std::max(q.radius_mm, end.radius_mm) });
+    attached[static_cast<std::size_t>(j.parentPath)].push_back(j.parentPoint);
+  }
+
+  std::vector<std::vector<std::pair<int, int>>> clutterCuts(skeleton.paths.size());
+  // Phase 1: every path's sections and which of them are clean.
+  std::vector<PathJudgement> judged;
+  judged.reserve(skeleton.paths.size());
+  for (std::size_t pi = 0; pi < skeleton.paths.size(); ++pi)
+  {
+    judged.push_back(judgePath(skeleton.paths[pi], attached[pi], zones, sampler, s, result));
+  }
+  // Junctions between two vessels (both paths have clean runs: a real bifurcation, not a path
+  // the coder drew on clutter joined to a vessel or to another such path), as the points of each
+  // path where one is: a stretch that reaches one holds the junction's elongated sections (the
+  // other vessel's lumen, over about a radius of the larger vessel) and is never clutter.
+  std::vector<std::vector<int>> realJunctionPoints(skeleton.paths.size());
+  for (const Junction& jn : skeleton.junctions)
+  {
+    if (judged[static_cast<std::size_t>(jn.parentPath)].tube &&
+        judged[static_cast<std::size_t>(jn.childPath)].tube)
+    {
+      realJunctionPoints[static_cast<std::size_t>(jn.parentPath)].push_back(jn.parentPoint);
+      const SkeletonPath& child = skeleton.paths[static_cast<std::size_t>(jn.childPath)];
+      realJunctionPoints[static_cast<std::size_t>(jn.childPath)].push_back(
+        jn.childEnd == Junction::End::Head ? 0 : static_cast<int>(child.points.size()) - 1);
+    }
+  }
+
+  // Phase 2: the stretches of each path.
+  result.sections.resize(skeleton.paths.size());
+  for (std::size_t pi = 0; pi < skeleton.paths.size(); ++pi)
+  {
+    retracePath(skeleton,
+      pi,
+      judged,
+      realJunctionPoints,
+      zones,
+      sampler,
+      largestSpacing,
+      s,
+      result,
+      clutterCuts);
+  }
+  result.junctionsDetached += cutStretches(skeleton, clutterCuts, result.sections);
+  // Attached ends coincide with their parent points (as the filter leaves them).
+  for (const Junction& jn : skeleton.junctions)
+  {
+    const SkeletonPoint& parent = skeleton.paths[static_cast<std::size_t>(jn.parentPath)]
+                                    .points[static_cast<std::size_t>(jn.parentPoint)];
+    SkeletonPath& child = skeleton.paths[static_cast<std::size_t>(jn.childPath)];
+    SkeletonPoint& end =
+      jn.childEnd == Junction::End::Head ? child.points.front() : child.points.back();
+    end.position_World_mm = parent.position_World_mm;
+  }
+  return result;
+}
+
+} // namespace vtouch
