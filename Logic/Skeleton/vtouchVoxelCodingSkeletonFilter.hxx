@@ -382,23 +382,11 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
     }
     std::vector<double> radii = rp.radius_mm;
     std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-    // Windows scale with the vessel. Positions average over two diameters: the axis cannot carry
-    // detail shorter than the lumen (wall bumps move the medial axis by a fraction of a radius),
-    // and a cubic fit keeps the bends. Derivatives need more support.
+    // The windows scale with the vessel (skeletonPathWindows, shared with the tube-section
+    // tracker's re-smoothing).
     const double medianRadius = radii[radii.size() / 2];
-    const double scale = std::max(2.0 * maxSpacing, medianRadius);
-    CurveGeometryWindows windows;
-    windows.position_mm = this->m_SmoothingWindow > 0.0 ? this->m_SmoothingWindow
-                          : this->m_SmoothingWindow < 0.0
-                            ? 0.0
-                            : 4.0 * std::max(maxSpacing, medianRadius);
-    // Automatic windows widen to three diameters where the path is straight enough
-    // (CurveGeometryWindows::widestPosition_mm): more of the wall's bumps average out there.
-    windows.widestPosition_mm =
-      this->m_SmoothingWindow == 0.0 ? 6.0 * std::max(maxSpacing, medianRadius) : 0.0;
-    const double base = this->m_SmoothingWindow > 0.0 ? this->m_SmoothingWindow : scale;
-    windows.curvature_mm = 6.0 * base;
-    windows.torsion_mm = 7.0 * base;
+    const CurveGeometryWindows windows =
+      skeletonPathWindows(medianRadius, maxSpacing, this->m_SmoothingWindow);
     applyCurveGeometry(path, windows, corners[p]);
     path.points.front().label =
       rp.headJunction >= 0 ? PointLabel::Bifurcation : PointLabel::EndPoint;
