@@ -3,11 +3,9 @@
 
 #include "pqVesselTouchCenterlineWorkflow.h"
 #include "pqVesselTouchDatasetSummary.h"
-#include "pqVesselTouchPanelSelfTest.h"
 #include "pqVesselTouchPanelValues.h"
 #include "pqVesselTouchSessionBinding.h"
 #include "pqVesselTouchSessionStatus.h"
-#include "pqVesselTouchTestDriver.h"
 #include "pqVesselTouchViewBinding.h"
 
 #include "qVesselTouchDeviceWidget.h"
@@ -41,9 +39,6 @@
 
 #include <QCloseEvent>
 #include <QCoreApplication>
-#include <QFile>
-#include <QJsonDocument>
-#include <QJsonObject>
 #include <QLabel>
 #include <QMainWindow>
 #include <QScrollArea>
@@ -264,17 +259,6 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
   // panel shows itself the first time a dataset becomes active (the user may close it afterwards
   // like any other panel).
   QTimer::singleShot(0, this, &pqVesselTouchDockPanel::revealOnce);
-
-  if (!qEnvironmentVariableIsEmpty("VESSELTOUCH_GUI_DRIVER"))
-  {
-    new pqVesselTouchTestDriver(this, qEnvironmentVariable("VESSELTOUCH_GUI_DRIVER"));
-  }
-  if (!qEnvironmentVariableIsEmpty("VESSELTOUCH_GUI_SELFTEST"))
-  {
-    auto* selfTest =
-      new pqVesselTouchPanelSelfTest(this, qEnvironmentVariable("VESSELTOUCH_GUI_SELFTEST"));
-    selfTest->start();
-  }
 }
 
 pqVesselTouchDockPanel::~pqVesselTouchDockPanel() = default;
@@ -628,7 +612,6 @@ void pqVesselTouchDockPanel::revealOnce()
 void pqVesselTouchDockPanel::showEvent(QShowEvent* event)
 {
   this->QDockWidget::showEvent(event);
-  this->writeReportIfRequested();
 }
 
 void pqVesselTouchDockPanel::setActiveSource(pqPipelineSource* source)
@@ -663,43 +646,9 @@ void pqVesselTouchDockPanel::updateDatasetInformation()
   {
     info->setDatasetName(QString());
     info->setDatasetSummary(QString());
-    this->writeReportIfRequested();
     return;
   }
   info->setDatasetName(in.Source->getSMName());
   const QString summary = pqVesselTouchDatasetSummary::describe(in.Source);
   info->setDatasetSummary(summary);
-  this->writeReportIfRequested();
-}
-
-void pqVesselTouchDockPanel::writeReportIfRequested() const
-{
-  // When VESSELTOUCH_GUI_REPORT names a file, what the panel shows is written there as JSON, so
-  // GUI tests can check the real widget state of a running ParaView.
-  const QString path = qEnvironmentVariable("VESSELTOUCH_GUI_REPORT");
-  if (path.isEmpty())
-  {
-    return;
-  }
-  const qVesselTouchInfoWidget* info = this->Internals->Ui.infoWidget;
-  QJsonObject versions;
-  for (const QString& component : info->versionComponents())
-  {
-    versions.insert(component, info->version(component));
-  }
-  QJsonObject report;
-  report.insert("panel", this->objectName());
-  report.insert("title", this->windowTitle());
-  report.insert("visible", this->isVisible());
-  report.insert("dataset", info->datasetName());
-  report.insert("summary", info->datasetSummary());
-  report.insert("versions", versions);
-  report.insert("session", this->Internals->Binding->proxy() != nullptr);
-  QFile file(path);
-  if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate))
-  {
-    qWarning() << "VesselTouch: cannot write the GUI report" << path;
-    return;
-  }
-  file.write(QJsonDocument(report).toJson());
 }

@@ -35,7 +35,7 @@ public:
   explicit pqVesselTouchDockPanel(QWidget* parent = nullptr);
   ~pqVesselTouchDockPanel() override;
 
-  /// The hosted widgets and the session binding (for the self-test and the view binding).
+  /// The hosted widgets and the session binding (for the view binding and the GUI tests' driver).
   qVesselTouchForceLawWidget* forceLawWidget() const;
   qVesselTouchHapticZoomWidget* zoomWidget() const;
   qVesselTouchForceZonesWidget* zonesWidget() const;
@@ -95,7 +95,6 @@ private:
   void showDevice(const pqVesselTouchSessionStatus& status);
   void connectWidgets();
   void setUpDevices();
-  void writeReportIfRequested() const;
 
   class pqInternals;
   QScopedPointer<pqInternals> Internals;
