@@ -53,12 +53,14 @@ with tempfile.TemporaryDirectory(prefix="vesseltouch-package-") as work:
                                  capture_output=True, text=True, check=True).stdout
         with open(library, "rb") as f:
             data = f.read()
+        found = len(failures)
         for test_name in TEST_NAMES:
             if test_name in symbols:
                 failures.append("%s defines a symbol named %s" % (name, test_name))
             elif test_name.encode() in data:
                 failures.append("%s contains the string %s" % (name, test_name))
-        print("%s: %d dynamic symbols, none of test code" % (name, symbols.count("\n")))
+        print("%s: %d dynamic symbols, %s" % (name, symbols.count("\n"),
+              "test code found" if len(failures) > found else "no test code"))
 
 for failure in failures:
     print("FAIL: " + failure)
