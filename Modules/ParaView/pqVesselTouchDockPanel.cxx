@@ -113,6 +113,9 @@ public:
   /// error or fault); the red line shows the session's first.
   QString PanelError;
   QVariantMap ShownDeviceCapabilities; // what the device section shows, to update on change only
+  /// The open device's calibration as last given to the device section (same purpose).
+  bool ShownHasCalibration = false;
+  qVesselTouchDeviceCalibration ShownCalibration;
   QString SessionError;
 
   pqVesselTouchPanelValues fromWidgets() const
@@ -567,13 +570,29 @@ void pqVesselTouchDockPanel::showDevice(const pqVesselTouchSessionStatus& status
   {
     return; // keep showing the device last opened: its limits still bound the settings
   }
+  // The calibration the open device applies, read-only; none for devices without raw axes.
+  qVesselTouchDeviceWidget* device = in.Ui.deviceWidget;
+  if (status.deviceHasCalibration != in.ShownHasCalibration ||
+      status.deviceCalibration != in.ShownCalibration)
+  {
+    in.ShownHasCalibration = status.deviceHasCalibration;
+    in.ShownCalibration = status.deviceCalibration;
+    if (status.deviceHasCalibration)
+    {
+      device->setCalibration(status.deviceCalibration);
+    }
+    else
+    {
+      device->clearCalibration();
+    }
+  }
   const qVesselTouchDeviceCapabilities& caps = status.deviceCapabilities;
   if (in.ShownDeviceCapabilities == caps.toVariantMap())
   {
     return;
   }
   in.ShownDeviceCapabilities = caps.toVariantMap();
-  in.Ui.deviceWidget->setCapabilities(caps);
+  device->setCapabilities(caps);
   // The proxy's coupler stiffness must stay renderable by this device (Ikits eq. 7: a stiffer
   // coupler than the device holds at its rate goes unstable); damping has no reported bound.
   in.Ui.forceLawWidget->setDeviceLimits(caps.maxStiffness_N_per_m, 0.0);

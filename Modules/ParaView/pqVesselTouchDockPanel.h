@@ -90,8 +90,8 @@ private Q_SLOTS:
   void showError(const QString& message);
 
 private:
-  /// The open device's capabilities and fault in the device section, and its stiffness limit on
-  /// the force-law widget.
+  /// The open device's capabilities, calibration (read-only, HID devices) and fault in the device
+  /// section, and its stiffness limit on the force-law widget.
   void showDevice(const pqVesselTouchSessionStatus& status);
   void connectWidgets();
   void setUpDevices();

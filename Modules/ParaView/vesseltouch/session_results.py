@@ -76,6 +76,17 @@ class SessionResults:
                 "max_update_rate_Hz": v[8], "has_pressure": v[9] > 0.5,
                 "position_resolution_mm": v[10], "buttons": int(v[11])}
 
+    def GetDeviceCalibration(self):
+        """The raw-axis calibration the open device applies, or None when no device is open or
+        it calibrates no raw axes (the simulated handle, the mouse, a replay, a HID mouse): one
+        dict per axis, x first, with raw_minimum and raw_maximum (device units, e.g. HID logical
+        values) and minimum_mm and maximum_mm (the positions at those readings)."""
+        v = list(self._info("DeviceCalibrationInfo"))
+        count = int(v[0]) if v else 0
+        return [{"raw_minimum": v[1 + 4 * i], "raw_maximum": v[2 + 4 * i],
+                 "minimum_mm": v[3 + 4 * i], "maximum_mm": v[4 + 4 * i]}
+                for i in range(count)] or None
+
     def GetLastError(self):
         """The last error of the session ("" when none)."""
         return self._info("LastErrorInfo") or ""
