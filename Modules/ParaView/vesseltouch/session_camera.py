@@ -6,16 +6,11 @@ import math
 
 from paraview import simple
 
+from .vectors import cross, unit
+
 
 def _normalized(v):
-    n = math.sqrt(sum(c * c for c in v))
-    if n == 0.0 or not math.isfinite(n):
-        raise RuntimeError("the session's camera is degenerate")
-    return [c / n for c in v]
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    return unit(v, RuntimeError("the session's camera is degenerate"))
 
 
 class SessionCamera:
@@ -128,5 +123,5 @@ class SessionCamera:
         position = list(p.GetProperty("CameraPosition").GetData())
         focal = list(p.GetProperty("CameraFocalPoint").GetData())
         forward = _normalized([f - q for f, q in zip(focal, position)])
-        right = _normalized(_cross(forward, list(p.GetProperty("CameraViewUp").GetData())))
-        return position, right, _cross(right, forward), forward
+        right = _normalized(cross(forward, list(p.GetProperty("CameraViewUp").GetData())))
+        return position, right, cross(right, forward), forward

@@ -1,6 +1,5 @@
 """The extension download carries no test code (issue 18, item 4): unpack the CPack .tar.gz and
-check that it holds no file of the GUI tests' VesselTouchTestDriver plugin, no development files,
-and that no shared library in it defines or names a test class (the GUI test driver, the panel
+check that it holds no file of the GUI tests' VesselTouchTestDriver plugin, and that no shared library in it defines or names a test class (the GUI test driver, the panel
 self-test, the fake HID transport, the hooks' plugin) or reads a test hook's environment variable
 (VESSELTOUCH_GUI_*, VESSELTOUCH_AGENT_REPORT). `nm -D` lists each library's dynamic symbols and
 the raw bytes are searched for the names, so a symbol and a string are both caught."""
@@ -12,10 +11,9 @@ import sys
 import tarfile
 import tempfile
 
-package_dir = os.environ["VESSELTOUCH_PACKAGE_DIR"]
-archives = sorted(glob.glob(os.path.join(package_dir, "VesselTouch-*.tar.gz")))
-if not archives:
-    sys.exit("no VesselTouch-*.tar.gz in %s" % package_dir)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from package_archive import newest_archive  # noqa: E402
+
 
 #: Names that only test code has.
 TEST_NAMES = (
@@ -30,15 +28,16 @@ TEST_NAMES = (
     "VESSELTOUCH_DONE_FLAG",
 )
 #: Files that must not be in the download (globs relative to its top folder).
-FORBIDDEN_FILES = ("**/VesselTouchTestDriver*", "**/include/VesselTouch", "**/cmake/VesselTouch")
+FORBIDDEN_FILES = ("**/VesselTouchTestDriver*",)
 
 failures = []
 with tempfile.TemporaryDirectory(prefix="vesseltouch-package-") as work:
-    with tarfile.open(archives[-1]) as archive:
+    archive_path = newest_archive()
+    with tarfile.open(archive_path) as archive:
         archive.extractall(work)
     tops = os.listdir(work)
     if len(tops) != 1:
-        sys.exit("expected one top folder in %s, found %s" % (archives[-1], tops))
+        sys.exit("expected one top folder in %s, found %s" % (archive_path, tops))
     top = os.path.join(work, tops[0])
     for pattern in FORBIDDEN_FILES:
         for path in glob.glob(os.path.join(top, pattern), recursive=True):
