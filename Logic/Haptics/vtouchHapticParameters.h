@@ -16,8 +16,18 @@ namespace vtouch
 
 struct HapticParameters
 {
-#define VTOUCH_HAPTIC_PARAMETER(                                                                   \
-  Type, member, Property, Kind, label, unit, defaultValue, minimum, maximum, choices, meaning)     \
+#define VTOUCH_HAPTIC_PARAMETER(Type,                                                              \
+  member,                                                                                          \
+  Property,                                                                                        \
+  Kind,                                                                                            \
+  label,                                                                                           \
+  unit,                                                                                            \
+  defaultValue,                                                                                    \
+  minimum,                                                                                         \
+  maximum,                                                                                         \
+  choices,                                                                                         \
+  meaning,                                                                                         \
+  laws)                                                                                            \
   Type member = static_cast<Type>(defaultValue);
 #include "vtouchHapticParameters.def"
 #undef VTOUCH_HAPTIC_PARAMETER

@@ -147,6 +147,7 @@ public:
     this->Ui.zonesWidget->setGain_N(v.activeGain_N(zoneGain_N));
     this->Ui.deviceWidget->setCurrentDeviceId(v.deviceId);
     this->Ui.tickOptionsWidget->setParameters(v.law.haptic);
+    this->Ui.tickOptionsWidget->setForceLaw(static_cast<int>(this->Ui.forceLawWidget->forceLaw()));
     this->Syncing = false;
   }
 
@@ -349,6 +350,11 @@ void pqVesselTouchDockPanel::connectWidgets()
     &qVesselTouchHapticParameterForm::parametersChanged,
     this,
     &pqVesselTouchDockPanel::onWidgetsEdited);
+  // The Advanced rows that do not act on the chosen law are greyed out (the table says which).
+  QObject::connect(in.Ui.forceLawWidget,
+    &qVesselTouchForceLawWidget::forceLawChanged,
+    in.Ui.tickOptionsWidget,
+    &qVesselTouchHapticParameterForm::setForceLaw);
 
   QObject::connect(in.Binding,
     &pqVesselTouchSessionBinding::sessionProxyChanged,
