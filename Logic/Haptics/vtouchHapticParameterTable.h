@@ -79,50 +79,21 @@ constexpr void setHapticParameter(HapticParameters& p, double value)
 /// Identifies a row of the table: HapticParameterId::Zoom etc., in table order.
 enum class HapticParameterId : int
 {
-#define VTOUCH_HAPTIC_PARAMETER(Type,                                                              \
-  member,                                                                                          \
-  Property,                                                                                        \
-  Kind,                                                                                            \
-  label,                                                                                           \
-  unit,                                                                                            \
-  defaultValue,                                                                                    \
-  minimum,                                                                                         \
-  maximum,                                                                                         \
-  choices,                                                                                         \
-  meaning,                                                                                         \
-  laws)                                                                                            \
-  Property,
+#define VTOUCH_HAPTIC_PARAMETER(Type, member, Property, ...) Property,
 #include "vtouchHapticParameters.def"
 #undef VTOUCH_HAPTIC_PARAMETER
 };
 
 /// Every haptic parameter, in table order.
 inline constexpr HapticParameterDescriptor kHapticParameterDescriptors[] = {
-#define VTOUCH_HAPTIC_PARAMETER(Type,                                                              \
-  member,                                                                                          \
-  Property,                                                                                        \
-  Kind,                                                                                            \
-  label,                                                                                           \
-  unit,                                                                                            \
-  defaultValue,                                                                                    \
-  minimum,                                                                                         \
-  maximum,                                                                                         \
-  choices,                                                                                         \
-  meaning,                                                                                         \
-  laws)                                                                                            \
-  { #Property,                                                                                     \
-    #member,                                                                                       \
-    label,                                                                                         \
-    unit,                                                                                          \
-    defaultValue,                                                                                  \
-    minimum,                                                                                       \
-    maximum,                                                                                       \
-    choices,                                                                                       \
-    meaning,                                                                                       \
-    laws,                                                                                          \
+// clang-format off
+#define VTOUCH_HAPTIC_PARAMETER(Type, member, Property, Kind, label, unit, defaultValue, minimum,   \
+  maximum, choices, meaning, laws)                                                                 \
+  { #Property, #member, label, unit, defaultValue, minimum, maximum, choices, meaning, laws,        \
     HapticParameterKind::Kind,                                                                     \
     &detail::getHapticParameter<Type, &HapticParameters::member>,                                  \
     &detail::setHapticParameter<Type, &HapticParameters::member> },
+// clang-format on
 #include "vtouchHapticParameters.def"
 #undef VTOUCH_HAPTIC_PARAMETER
 };
