@@ -45,6 +45,24 @@ struct DeviceCapabilities
   int buttonCount = 0; ///< number of buttons reported in DeviceState::buttons
 };
 
+/// How a device maps its raw absolute axes to millimetres while it is open, as it applies it:
+/// per axis, raw readings rawMinimum..rawMaximum map linearly onto minimum_mm..maximum_mm (an
+/// inverted axis has minimum_mm > maximum_mm). axisCount 0: the device has no raw-axis
+/// calibration (simulated handle, mouse pointer, replay, HID devices with relative axes).
+struct DeviceAxisCalibration
+{
+  struct Axis
+  {
+    double rawMinimum = 0.0; ///< raw reading (device units, e.g. HID logical value) at one end
+    double rawMaximum = 0.0; ///< raw reading at the other end
+    double minimum_mm = 0.0; ///< position at rawMinimum, mm (device frame)
+    double maximum_mm = 0.0; ///< position at rawMaximum, mm (device frame)
+  };
+  static constexpr int kMaxAxes = 3;
+  int axisCount = 0; ///< axes calibrated: 0 (none), 2 (x, y) or 3
+  Axis axes[kMaxAxes];
+};
+
 /// One timestamped sample of the device, in the device frame.
 struct DeviceState
 {

@@ -29,6 +29,9 @@ public:
 
   /// Valid after a successful open().
   virtual const DeviceCapabilities& capabilities() const = 0;
+  /// The raw-axis calibration the open device applies (valid after a successful open()). Devices
+  /// that read no raw axes have none: the default, axisCount 0.
+  virtual DeviceAxisCalibration axisCalibration() const { return DeviceAxisCalibration(); }
 
   /// Newest sample, without blocking. On failure `state` is left unchanged.
   virtual DeviceStatus read(DeviceState& state) = 0;

@@ -338,6 +338,32 @@ void HidPidDevice::close()
   this->Transport->close();
 }
 
+DeviceAxisCalibration HidPidDevice::axisCalibration() const
+{
+  DeviceAxisCalibration result;
+  const HidField& x = this->Decoder.xField();
+  if (!this->Open || !this->Decoder.configured() || x.isRelative())
+  {
+    return result;
+  }
+  const DeviceCalibration& c = this->Calibration;
+  const auto axis = [](double lo, double hi, const HidField& f, double extent, bool invert)
+  {
+    DeviceAxisCalibration::Axis a;
+    const bool logical = !(hi != lo); // the same rule as toMillimetres()
+    a.rawMinimum = logical ? static_cast<double>(f.logicalMinimum) : lo;
+    a.rawMaximum = logical ? static_cast<double>(f.logicalMaximum) : hi;
+    a.minimum_mm = (invert ? 0.5 : -0.5) * extent;
+    a.maximum_mm = -a.minimum_mm;
+    return a;
+  };
+  result.axisCount = 2;
+  result.axes[0] = axis(c.rawMinimum.x, c.rawMaximum.x, x, c.workspace_mm.x, c.invertX);
+  result.axes[1] =
+    axis(c.rawMinimum.y, c.rawMaximum.y, this->Decoder.yField(), c.workspace_mm.y, c.invertY);
+  return result;
+}
+
 Vec3 HidPidDevice::toMillimetres(const HidInputSample& sample)
 {
   const DeviceCalibration& c = this->Calibration;

@@ -46,6 +46,9 @@ public:
   void close() override;
   bool isOpen() const override { return this->Open; }
   const DeviceCapabilities& capabilities() const override { return this->Capabilities; }
+  /// x and y as toMillimetres() maps them: the preset's raw range (or the fields' logical range)
+  /// onto the workspace, centred, inverted axes flipped. None for relative axes (mice).
+  DeviceAxisCalibration axisCalibration() const override;
   DeviceStatus read(DeviceState& state) override;
   DeviceStatus write(const Vec3& force_Device_N) override;
   const char* lastError() const override { return this->LastError; }

@@ -60,6 +60,7 @@ public:
   void close() override;
   bool isOpen() const override;
   const DeviceCapabilities& capabilities() const override { return this->Inner->capabilities(); }
+  DeviceAxisCalibration axisCalibration() const override { return this->Inner->axisCalibration(); }
   DeviceStatus read(DeviceState& state) override;
   DeviceStatus write(const Vec3& force_Device_N) override;
   /// A static string (thread-safe); the inner device's reason when the fault came from it.

@@ -49,7 +49,7 @@ for target in "${targets[@]}"; do
   scratch="$build/corpus/${seeds[$target]}"
   mkdir -p "$scratch"
   echo "== running $target for ${seconds}s"
-  if ! "$build/HapticDevice/$target" \
+  if ! "$build/Testing/HapticDevice/Fuzz/$target" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
       -print_final_stats=1 -artifact_prefix="$build/artifacts/$target-" \
       "$scratch" "$corpus/${seeds[$target]}"; then

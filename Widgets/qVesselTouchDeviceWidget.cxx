@@ -31,10 +31,13 @@ public:
   QString FaultMessage; // empty when no fault is shown
   qVesselTouchDeviceCapabilities Capabilities;
   qVesselTouchDeviceCalibration Calibration;
+  /// The host gave the open device's calibration (setCalibration): the group may show.
+  bool HasCalibration = false;
   AxisBoxes Axes[qVesselTouchDeviceCalibration::kAxisCount];
 
   void showCalibration();
   void readCalibration();
+  bool isHardware() const;
   void showCapabilities(bool known);
   void showKind();
 };
@@ -107,6 +110,18 @@ void qVesselTouchDeviceWidgetPrivate::showCapabilities(bool known)
   }
 }
 
+bool qVesselTouchDeviceWidgetPrivate::isHardware() const
+{
+  for (const qVesselTouchDeviceEntry& entry : this->Devices)
+  {
+    if (entry.id == this->CurrentId)
+    {
+      return entry.kind == QLatin1String("hid");
+    }
+  }
+  return false;
+}
+
 void qVesselTouchDeviceWidgetPrivate::showKind()
 {
   QString kind;
@@ -120,10 +135,12 @@ void qVesselTouchDeviceWidgetPrivate::showKind()
   }
   this->Ui.kindValue->setText(kind.isEmpty() ? QStringLiteral("-") : kind);
   // The raw axis calibration and the reported capabilities belong to a hardware device; for the
-  // mouse, the simulated handle or a replay they mean nothing and only take room.
-  const bool hardware = kind == QLatin1String("hid");
+  // mouse, the simulated handle or a replay they mean nothing and only take room. The
+  // calibration shows only when the host gave the open device's own (it is read-only: what the
+  // device applies, from its preset, not a setting).
+  const bool hardware = this->isHardware();
   this->Ui.capabilitiesGroup->setVisible(hardware);
-  this->Ui.calibrationGroup->setVisible(hardware);
+  this->Ui.calibrationGroup->setVisible(hardware && this->HasCalibration);
 }
 
 qVesselTouchDeviceWidget::qVesselTouchDeviceWidget(QWidget* parent)
@@ -146,23 +163,14 @@ qVesselTouchDeviceWidget::qVesselTouchDeviceWidget(QWidget* parent)
   d->showCalibration();
   d->showCapabilities(false);
 
+  // Read-only: the calibration shown is the open device's, applied by the device layer.
   for (const AxisBoxes& boxes : d->Axes)
   {
     for (QDoubleSpinBox* box : { boxes.RawMinimum, boxes.RawMaximum, boxes.Minimum, boxes.Maximum })
     {
-      connect(box,
-        QOverload<double>::of(&QDoubleSpinBox::valueChanged),
-        this,
-        [this]()
-        {
-          Q_D(qVesselTouchDeviceWidget);
-          const qVesselTouchDeviceCalibration before = d->Calibration;
-          d->readCalibration();
-          if (d->Calibration != before)
-          {
-            emit this->calibrationChanged();
-          }
-        });
+      box->setReadOnly(true);
+      box->setButtonSymbols(QAbstractSpinBox::NoButtons);
+      box->setFocusPolicy(Qt::NoFocus);
     }
   }
   connect(d->Ui.deviceComboBox,
@@ -293,8 +301,25 @@ void qVesselTouchDeviceWidget::setCalibration(const qVesselTouchDeviceCalibratio
 {
   Q_D(qVesselTouchDeviceWidget);
   d->Calibration = calibration;
+  d->HasCalibration = true;
   d->showCalibration();
   d->readCalibration(); // keep what the spin boxes could hold (their ranges and decimals)
+  d->showKind();
+}
+
+void qVesselTouchDeviceWidget::clearCalibration()
+{
+  Q_D(qVesselTouchDeviceWidget);
+  d->Calibration = qVesselTouchDeviceCalibration();
+  d->HasCalibration = false;
+  d->showCalibration();
+  d->showKind();
+}
+
+bool qVesselTouchDeviceWidget::hasCalibration() const
+{
+  Q_D(const qVesselTouchDeviceWidget);
+  return d->HasCalibration;
 }
 
 qVesselTouchDeviceCalibration qVesselTouchDeviceWidget::calibration() const

@@ -1,7 +1,9 @@
 // Picks the haptic device (pointer, simulated, replay, each HID device found), shows its status,
 // capabilities and calibration, and a clear red fault message when it fails.
-// Pure Qt: the module glue fills the list, feeds status/capabilities/faults from the device layer
-// and acts on deviceSelected()/calibrationChanged().
+// Pure Qt: the module glue fills the list, feeds status/capabilities/calibration/faults from the
+// device layer and acts on deviceSelected(). Capabilities and calibration show for HID devices
+// only; the calibration is a read-only display of what the open device applies (its preset), and
+// shows only once the host gave it.
 #ifndef qVesselTouchDeviceWidget_h
 #define qVesselTouchDeviceWidget_h
 
@@ -49,9 +51,12 @@ public:
   /// Empties the capability form ("-"), e.g. while no device is open.
   void clearCapabilities();
 
-  /// Raw-to-millimetre calibration per axis, editable by the user. Setting it does not emit.
+  /// The open device's raw-to-millimetre calibration per axis, shown read-only (HID devices only).
   void setCalibration(const qVesselTouchDeviceCalibration& calibration);
+  /// No calibration known (no device open, or one without): the group hides. The default.
+  void clearCalibration();
   qVesselTouchDeviceCalibration calibration() const;
+  bool hasCalibration() const;
 
   /// The fault shown in red, empty when none.
   QString faultMessage() const;
@@ -70,8 +75,6 @@ public slots:
 signals:
   /// The user (or setCurrentDeviceId / a list change) selected another device.
   void deviceSelected(const QString& id);
-  /// The user edited the calibration.
-  void calibrationChanged();
   /// A fault was shown (true) or cleared (false).
   void faultChanged(bool hasFault);
 

@@ -53,7 +53,28 @@ QString toolTipFor(const HapticParameterDescriptor& d)
                QString::number(d.minimum),
                withUnit(d.maximum, d.unit));
   }
+  if (*d.forceLaws)
+  {
+    tip += QObject::tr(" Acts on: %1.")
+             .arg(QString::fromUtf8(d.forceLaws).replace(QLatin1Char('|'), QStringLiteral(", ")));
+  }
   return tip + QStringLiteral(" (%1)").arg(QString::fromUtf8(d.name));
+}
+
+/// Whether the row acts on force law `law`: its "laws" names the law's label among the ForceLaw
+/// row's choices, or is empty (every law).
+bool actsOn(const HapticParameterDescriptor& d, int law)
+{
+  if (!*d.forceLaws)
+  {
+    return true;
+  }
+  const HapticParameterDescriptor& forceLaw =
+    vtouch::hapticParameter(vtouch::HapticParameterId::ForceLaw);
+  const QStringList labels = QString::fromUtf8(forceLaw.choices).split(QLatin1Char('|'));
+  const int index = law - static_cast<int>(forceLaw.minimum);
+  return index >= 0 && index < labels.size() &&
+         QString::fromUtf8(d.forceLaws).split(QLatin1Char('|')).contains(labels[index]);
 }
 } // namespace
 
@@ -68,6 +89,7 @@ public:
   };
 
   vtouch::HapticParameters Parameters;
+  int ForceLaw = 0;
   QVector<Row> Rows;
   QFormLayout* Layout = nullptr;
 
@@ -111,6 +133,16 @@ public:
         combo->setCurrentIndex(std::max(0, combo->findData(static_cast<int>(std::lround(value)))));
         break;
       }
+    }
+  }
+
+  void enableForLaw()
+  {
+    for (const Row& row : this->Rows)
+    {
+      const bool enabled = actsOn(*row.Descriptor, this->ForceLaw);
+      row.Editor->setEnabled(enabled);
+      row.Label->setEnabled(enabled);
     }
   }
 
@@ -221,6 +253,20 @@ void qVesselTouchHapticParameterForm::setParameterNames(const QStringList& names
     }
     d->Rows.push_back(row);
   }
+  d->enableForLaw();
+}
+
+int qVesselTouchHapticParameterForm::forceLaw() const
+{
+  Q_D(const qVesselTouchHapticParameterForm);
+  return d->ForceLaw;
+}
+
+void qVesselTouchHapticParameterForm::setForceLaw(int law)
+{
+  Q_D(qVesselTouchHapticParameterForm);
+  d->ForceLaw = law;
+  d->enableForLaw();
 }
 
 QStringList qVesselTouchHapticParameterForm::parameterNames() const

@@ -3,6 +3,8 @@
 // meaning (tooltip): a spin box for Real and Integer rows, a check box for Boolean rows, a combo
 // box for Choice rows. It reads and writes a vtouch::HapticParameters through the descriptors'
 // get/set, so no default, range or label is written here. Used for the panel's Advanced section.
+// Rows whose parameter does not act on the chosen force law (the table's "laws" column) are greyed
+// out.
 #ifndef qVesselTouchHapticParameterForm_h
 #define qVesselTouchHapticParameterForm_h
 
@@ -37,9 +39,15 @@ public:
   /// The control of a row (QDoubleSpinBox, QSpinBox, QCheckBox or QComboBox), or nullptr.
   QWidget* editor(const QString& name) const;
 
+  /// The force law the rows are greyed out for (a ForceLaw value). Default 0 (LDGF).
+  int forceLaw() const;
+
 public slots:
   /// Shows `p` (clamped to the ranges); emits parametersChanged() only when a row changes.
   void setParameters(const vtouch::HapticParameters& p);
+  /// Enables the rows whose parameter acts on `law` (a ForceLaw value, e.g. the force-law
+  /// widget's forceLawChanged()) and greys out the others; their values are kept.
+  void setForceLaw(int law);
 
 signals:
   /// A row's value changed, from its control or setParameters().

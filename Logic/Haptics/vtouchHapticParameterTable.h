@@ -35,6 +35,9 @@ struct HapticParameterDescriptor
   double maximum;      ///< largest accepted value
   const char* choices; ///< Choice: '|'-separated labels of minimum, minimum + 1, ...; else ""
   const char* meaning; ///< one line, with its paper section or equation
+  /// The force laws the parameter acts on: '|'-separated labels of the ForceLaw row's choices,
+  /// "" for every law.
+  const char* forceLaws;
   HapticParameterKind kind;
   double (*get)(const HapticParameters&); ///< the member as a double
   void (*set)(HapticParameters&, double); ///< stores a value (checked first: checkHapticParameter)
@@ -76,29 +79,21 @@ constexpr void setHapticParameter(HapticParameters& p, double value)
 /// Identifies a row of the table: HapticParameterId::Zoom etc., in table order.
 enum class HapticParameterId : int
 {
-#define VTOUCH_HAPTIC_PARAMETER(                                                                   \
-  Type, member, Property, Kind, label, unit, defaultValue, minimum, maximum, choices, meaning)     \
-  Property,
+#define VTOUCH_HAPTIC_PARAMETER(Type, member, Property, ...) Property,
 #include "vtouchHapticParameters.def"
 #undef VTOUCH_HAPTIC_PARAMETER
 };
 
 /// Every haptic parameter, in table order.
 inline constexpr HapticParameterDescriptor kHapticParameterDescriptors[] = {
-#define VTOUCH_HAPTIC_PARAMETER(                                                                   \
-  Type, member, Property, Kind, label, unit, defaultValue, minimum, maximum, choices, meaning)     \
-  { #Property,                                                                                     \
-    #member,                                                                                       \
-    label,                                                                                         \
-    unit,                                                                                          \
-    defaultValue,                                                                                  \
-    minimum,                                                                                       \
-    maximum,                                                                                       \
-    choices,                                                                                       \
-    meaning,                                                                                       \
+// clang-format off
+#define VTOUCH_HAPTIC_PARAMETER(Type, member, Property, Kind, label, unit, defaultValue, minimum,   \
+  maximum, choices, meaning, laws)                                                                 \
+  { #Property, #member, label, unit, defaultValue, minimum, maximum, choices, meaning, laws,        \
     HapticParameterKind::Kind,                                                                     \
     &detail::getHapticParameter<Type, &HapticParameters::member>,                                  \
     &detail::setHapticParameter<Type, &HapticParameters::member> },
+// clang-format on
 #include "vtouchHapticParameters.def"
 #undef VTOUCH_HAPTIC_PARAMETER
 };

@@ -16,8 +16,8 @@ namespace vtouch
 
 struct HapticParameters
 {
-#define VTOUCH_HAPTIC_PARAMETER(                                                                   \
-  Type, member, Property, Kind, label, unit, defaultValue, minimum, maximum, choices, meaning)     \
+// Only the leading columns matter here; the rest (range, labels, meaning, laws) is the table's.
+#define VTOUCH_HAPTIC_PARAMETER(Type, member, Property, Kind, label, unit, defaultValue, ...)      \
   Type member = static_cast<Type>(defaultValue);
 #include "vtouchHapticParameters.def"
 #undef VTOUCH_HAPTIC_PARAMETER

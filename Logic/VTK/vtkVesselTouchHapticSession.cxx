@@ -729,6 +729,29 @@ double* vtkVesselTouchHapticSession::GetDeviceCapabilities()
   return this->DeviceCapabilities;
 }
 
+double* vtkVesselTouchHapticSession::GetDeviceCalibration()
+{
+  std::fill(std::begin(this->DeviceCalibration), std::end(this->DeviceCalibration), 0.0);
+  auto device = this->Internals->Session.device();
+  if (!device || !device->isOpen())
+  {
+    return this->DeviceCalibration;
+  }
+  // Fixed when the device opened, like its capabilities.
+  const vtouch::DeviceAxisCalibration calibration = device->axisCalibration();
+  this->DeviceCalibration[0] = calibration.axisCount;
+  for (int i = 0; i < calibration.axisCount; ++i)
+  {
+    const vtouch::DeviceAxisCalibration::Axis& axis = calibration.axes[i];
+    double* out = this->DeviceCalibration + 1 + 4 * i;
+    out[0] = axis.rawMinimum;
+    out[1] = axis.rawMaximum;
+    out[2] = axis.minimum_mm;
+    out[3] = axis.maximum_mm;
+  }
+  return this->DeviceCalibration;
+}
+
 const char* vtkVesselTouchHapticSession::GetDeviceName()
 {
   auto device = this->Internals->Session.device();

@@ -204,6 +204,11 @@ public:
   /// (N/m), fastest update rate (Hz), pressure input (0/1), position resolution (mm), buttons.
   /// All zero when no device is open (before Start, after Stop).
   double* GetDeviceCapabilities() VTK_SIZEHINT(12);
+  /// The raw-axis calibration the open device applies (vtouch::DeviceAxisCalibration): the number
+  /// of calibrated axes (0: none, e.g. the simulated handle, the mouse, a replay, a HID mouse),
+  /// then per axis x, y, z: raw minimum, raw maximum (device units), position at each (mm). All
+  /// zero when no device is open.
+  double* GetDeviceCalibration() VTK_SIZEHINT(13);
   /// The open device's product name ("" when none is open).
   const char* GetDeviceName();
   /// running (0/1), fault code (0 none), log entries, dropped log entries, skeleton paths,
@@ -284,6 +289,7 @@ private:
   double Statistics[12] = {};
   double AgentState[23] = {};
   double DeviceCapabilities[12] = {};
+  double DeviceCalibration[13] = {};
   double DeviceForce[3] = {};
   int SessionStatus[6] = {};
 };

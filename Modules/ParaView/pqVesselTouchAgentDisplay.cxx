@@ -20,9 +20,7 @@
 #include <QElapsedTimer>
 #include <QFile>
 #include <QGuiApplication>
-#include <QJsonDocument>
 #include <QJsonObject>
-#include <QSaveFile>
 #include <QTimer>
 #include <QWidget>
 #include <QtDebug>
@@ -71,8 +69,6 @@ public:
   bool RenderRequested = false;
   QElapsedTimer SinceRequest;
   long long CapturesAtRequest = 0;
-  int TicksSinceReport = 0;
-  long long Reports = 0;
 
   vtkVesselTouchHapticSession* sessionObject() const
   {
@@ -230,7 +226,7 @@ void pqVesselTouchAgentDisplay::tick()
   this->pushCameraIfChanged();
   this->updateAgent();
   this->drawFrame();
-  this->writeReportIfRequested();
+  Q_EMIT this->frameDrawn();
 }
 
 void pqVesselTouchAgentDisplay::pushCameraIfChanged()
@@ -404,15 +400,8 @@ void pqVesselTouchAgentDisplay::drawFrame()
   this->View->render();
 }
 
-void pqVesselTouchAgentDisplay::writeReportIfRequested()
+QJsonObject pqVesselTouchAgentDisplay::diagnostics() const
 {
-  // VESSELTOUCH_AGENT_REPORT names a JSON file that GUI tests read (about twice a second).
-  static const QString path = qEnvironmentVariable("VESSELTOUCH_AGENT_REPORT");
-  if (path.isEmpty() || ++this->Internals->TicksSinceReport < 30)
-  {
-    return;
-  }
-  this->Internals->TicksSinceReport = 0;
   QJsonObject report;
   report.insert("enabled", this->Enabled);
   report.insert("session", this->Internals->Session != nullptr);
@@ -451,13 +440,5 @@ void pqVesselTouchAgentDisplay::writeReportIfRequested()
     report.insert("view_height", widget->height());
     report.insert("device_pixel_ratio", widget->devicePixelRatioF());
   }
-  // Numbered, so a test can wait for a report written after what it did, and replaced in one
-  // step (rename(2)): a reader never finds the file missing or half written.
-  report.insert("sequence", static_cast<double>(++this->Internals->Reports));
-  QSaveFile file(path);
-  if (file.open(QIODevice::WriteOnly | QIODevice::Truncate))
-  {
-    file.write(QJsonDocument(report).toJson());
-    file.commit();
-  }
+  return report;
 }

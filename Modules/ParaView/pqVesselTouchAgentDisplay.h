@@ -20,6 +20,7 @@
 #ifndef pqVesselTouchAgentDisplay_h
 #define pqVesselTouchAgentDisplay_h
 
+#include <QJsonObject>
 #include <QObject>
 #include <QPointer>
 
@@ -64,6 +65,11 @@ public:
   double lastAgentX() const { return this->LastAgent_px[0]; }
   double lastAgentY() const { return this->LastAgent_px[1]; }
   int lastAgentState() const { return this->LastState; }
+  /// What the display is doing, for diagnostics and the GUI tests: enabled, session, frame
+  /// counts and times, camera pushes, the agent's state and pixel position, the session's tick,
+  /// cursor, device type and view-model builds, the render window's size and the view's place
+  /// on the screen (logical px).
+  QJsonObject diagnostics() const;
 
 public Q_SLOTS:
   /// The render view to draw in (null: none). The overlay layer moves with it.
@@ -81,6 +87,8 @@ public Q_SLOTS:
 
 Q_SIGNALS:
   void enabledChanged(bool enabled);
+  /// A tick drew its frame (the view is attached and the display enabled).
+  void frameDrawn();
 
 private:
   class pqInternals;
@@ -90,7 +98,6 @@ private:
   /// Places the cone from agent state `a`; its display position into `anchor_px`.
   bool placeCone(const double* a, double anchor_px[2]);
   void drawFrame();
-  void writeReportIfRequested();
 
   std::unique_ptr<pqInternals> Internals;
   QPointer<pqRenderView> View;

@@ -3,11 +3,9 @@
 
 #include "pqVesselTouchCenterlineWorkflow.h"
 #include "pqVesselTouchDatasetSummary.h"
-#include "pqVesselTouchPanelSelfTest.h"
 #include "pqVesselTouchPanelValues.h"
 #include "pqVesselTouchSessionBinding.h"
 #include "pqVesselTouchSessionStatus.h"
-#include "pqVesselTouchTestDriver.h"
 #include "pqVesselTouchViewBinding.h"
 
 #include "qVesselTouchDeviceWidget.h"
@@ -41,9 +39,6 @@
 
 #include <QCloseEvent>
 #include <QCoreApplication>
-#include <QFile>
-#include <QJsonDocument>
-#include <QJsonObject>
 #include <QLabel>
 #include <QMainWindow>
 #include <QScrollArea>
@@ -118,6 +113,9 @@ public:
   /// error or fault); the red line shows the session's first.
   QString PanelError;
   QVariantMap ShownDeviceCapabilities; // what the device section shows, to update on change only
+  /// The open device's calibration as last given to the device section (same purpose).
+  bool ShownHasCalibration = false;
+  qVesselTouchDeviceCalibration ShownCalibration;
   QString SessionError;
 
   pqVesselTouchPanelValues fromWidgets() const
@@ -149,6 +147,7 @@ public:
     this->Ui.zonesWidget->setGain_N(v.activeGain_N(zoneGain_N));
     this->Ui.deviceWidget->setCurrentDeviceId(v.deviceId);
     this->Ui.tickOptionsWidget->setParameters(v.law.haptic);
+    this->Ui.tickOptionsWidget->setForceLaw(static_cast<int>(this->Ui.forceLawWidget->forceLaw()));
     this->Syncing = false;
   }
 
@@ -264,17 +263,6 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
   // panel shows itself the first time a dataset becomes active (the user may close it afterwards
   // like any other panel).
   QTimer::singleShot(0, this, &pqVesselTouchDockPanel::revealOnce);
-
-  if (!qEnvironmentVariableIsEmpty("VESSELTOUCH_GUI_DRIVER"))
-  {
-    new pqVesselTouchTestDriver(this, qEnvironmentVariable("VESSELTOUCH_GUI_DRIVER"));
-  }
-  if (!qEnvironmentVariableIsEmpty("VESSELTOUCH_GUI_SELFTEST"))
-  {
-    auto* selfTest =
-      new pqVesselTouchPanelSelfTest(this, qEnvironmentVariable("VESSELTOUCH_GUI_SELFTEST"));
-    selfTest->start();
-  }
 }
 
 pqVesselTouchDockPanel::~pqVesselTouchDockPanel() = default;
@@ -362,6 +350,11 @@ void pqVesselTouchDockPanel::connectWidgets()
     &qVesselTouchHapticParameterForm::parametersChanged,
     this,
     &pqVesselTouchDockPanel::onWidgetsEdited);
+  // The Advanced rows that do not act on the chosen law are greyed out (the table says which).
+  QObject::connect(in.Ui.forceLawWidget,
+    &qVesselTouchForceLawWidget::forceLawChanged,
+    in.Ui.tickOptionsWidget,
+    &qVesselTouchHapticParameterForm::setForceLaw);
 
   QObject::connect(in.Binding,
     &pqVesselTouchSessionBinding::sessionProxyChanged,
@@ -583,13 +576,29 @@ void pqVesselTouchDockPanel::showDevice(const pqVesselTouchSessionStatus& status
   {
     return; // keep showing the device last opened: its limits still bound the settings
   }
+  // The calibration the open device applies, read-only; none for devices without raw axes.
+  qVesselTouchDeviceWidget* device = in.Ui.deviceWidget;
+  if (status.deviceHasCalibration != in.ShownHasCalibration ||
+      status.deviceCalibration != in.ShownCalibration)
+  {
+    in.ShownHasCalibration = status.deviceHasCalibration;
+    in.ShownCalibration = status.deviceCalibration;
+    if (status.deviceHasCalibration)
+    {
+      device->setCalibration(status.deviceCalibration);
+    }
+    else
+    {
+      device->clearCalibration();
+    }
+  }
   const qVesselTouchDeviceCapabilities& caps = status.deviceCapabilities;
   if (in.ShownDeviceCapabilities == caps.toVariantMap())
   {
     return;
   }
   in.ShownDeviceCapabilities = caps.toVariantMap();
-  in.Ui.deviceWidget->setCapabilities(caps);
+  device->setCapabilities(caps);
   // The proxy's coupler stiffness must stay renderable by this device (Ikits eq. 7: a stiffer
   // coupler than the device holds at its rate goes unstable); damping has no reported bound.
   in.Ui.forceLawWidget->setDeviceLimits(caps.maxStiffness_N_per_m, 0.0);
@@ -628,7 +637,6 @@ void pqVesselTouchDockPanel::revealOnce()
 void pqVesselTouchDockPanel::showEvent(QShowEvent* event)
 {
   this->QDockWidget::showEvent(event);
-  this->writeReportIfRequested();
 }
 
 void pqVesselTouchDockPanel::setActiveSource(pqPipelineSource* source)
@@ -663,43 +671,9 @@ void pqVesselTouchDockPanel::updateDatasetInformation()
   {
     info->setDatasetName(QString());
     info->setDatasetSummary(QString());
-    this->writeReportIfRequested();
     return;
   }
   info->setDatasetName(in.Source->getSMName());
   const QString summary = pqVesselTouchDatasetSummary::describe(in.Source);
   info->setDatasetSummary(summary);
-  this->writeReportIfRequested();
-}
-
-void pqVesselTouchDockPanel::writeReportIfRequested() const
-{
-  // When VESSELTOUCH_GUI_REPORT names a file, what the panel shows is written there as JSON, so
-  // GUI tests can check the real widget state of a running ParaView.
-  const QString path = qEnvironmentVariable("VESSELTOUCH_GUI_REPORT");
-  if (path.isEmpty())
-  {
-    return;
-  }
-  const qVesselTouchInfoWidget* info = this->Internals->Ui.infoWidget;
-  QJsonObject versions;
-  for (const QString& component : info->versionComponents())
-  {
-    versions.insert(component, info->version(component));
-  }
-  QJsonObject report;
-  report.insert("panel", this->objectName());
-  report.insert("title", this->windowTitle());
-  report.insert("visible", this->isVisible());
-  report.insert("dataset", info->datasetName());
-  report.insert("summary", info->datasetSummary());
-  report.insert("versions", versions);
-  report.insert("session", this->Internals->Binding->proxy() != nullptr);
-  QFile file(path);
-  if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate))
-  {
-    qWarning() << "VesselTouch: cannot write the GUI report" << path;
-    return;
-  }
-  file.write(QJsonDocument(report).toJson());
 }

@@ -35,7 +35,7 @@ public:
   explicit pqVesselTouchDockPanel(QWidget* parent = nullptr);
   ~pqVesselTouchDockPanel() override;
 
-  /// The hosted widgets and the session binding (for the self-test and the view binding).
+  /// The hosted widgets and the session binding (for the view binding and the GUI tests' driver).
   qVesselTouchForceLawWidget* forceLawWidget() const;
   qVesselTouchHapticZoomWidget* zoomWidget() const;
   qVesselTouchForceZonesWidget* zonesWidget() const;
@@ -90,12 +90,11 @@ private Q_SLOTS:
   void showError(const QString& message);
 
 private:
-  /// The open device's capabilities and fault in the device section, and its stiffness limit on
-  /// the force-law widget.
+  /// The open device's capabilities, calibration (read-only, HID devices) and fault in the device
+  /// section, and its stiffness limit on the force-law widget.
   void showDevice(const pqVesselTouchSessionStatus& status);
   void connectWidgets();
   void setUpDevices();
-  void writeReportIfRequested() const;
 
   class pqInternals;
   QScopedPointer<pqInternals> Internals;

@@ -29,7 +29,7 @@ public:
   bool isArmed() const;
 
   /// The pick itself at `position` (widget pixels, top-left origin, as Qt gives them); emits
-  /// seedPicked() or pickFailed() and returns whether a seed was found. Public for the self-test.
+  /// seedPicked() or pickFailed() and returns whether a seed was found. Public for the GUI tests' driver.
   bool pickAt(pqRenderView* view, pqPipelineSource* volume, const QPoint& position);
 
 Q_SIGNALS:

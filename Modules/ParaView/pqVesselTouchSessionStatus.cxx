@@ -7,6 +7,7 @@
 
 #include <QObject>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -89,6 +90,20 @@ pqVesselTouchSessionStatus pqVesselTouchSessionStatus::read(vtkSMProxy* session)
     c.maxUpdateRate_Hz = caps.GetAsDouble(8);
     c.hasPressure = caps.GetAsDouble(9) > 0.5;
     c.buttonCount = static_cast<int>(caps.GetAsDouble(11));
+
+    vtkSMPropertyHelper calibration(session, "DeviceCalibrationInfo");
+    const int axes = std::min(
+      static_cast<int>(calibration.GetAsDouble(0)), qVesselTouchDeviceCalibration::kAxisCount);
+    status.deviceHasCalibration = axes > 0;
+    for (int i = 0; i < axes; ++i)
+    {
+      qVesselTouchDeviceCalibration::Axis& axis = status.deviceCalibration.axes[i];
+      const unsigned first = 1 + 4 * static_cast<unsigned>(i);
+      axis.rawMinimum = calibration.GetAsDouble(first);
+      axis.rawMaximum = calibration.GetAsDouble(first + 1);
+      axis.minimum_mm = calibration.GetAsDouble(first + 2);
+      axis.maximum_mm = calibration.GetAsDouble(first + 3);
+    }
   }
   return status;
 }

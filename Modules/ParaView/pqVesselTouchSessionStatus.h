@@ -1,10 +1,11 @@
 // A snapshot of the haptic session proxy's information properties (StatisticsInfo,
 // AgentStateInfo, SessionStatusInfo, DeviceForceInfo, DeviceCapabilitiesInfo, DeviceNameInfo,
-// LastErrorInfo, FaultInfo, SchedulerNoticeInfo), read by the panel's ~10 Hz timer and by the
-// panel self-test.
+// DeviceCalibrationInfo, LastErrorInfo, FaultInfo, SchedulerNoticeInfo), read by the panel's
+// ~10 Hz timer and by the panel self-test.
 #ifndef pqVesselTouchSessionStatus_h
 #define pqVesselTouchSessionStatus_h
 
+#include "qVesselTouchDeviceCalibration.h"
 #include "qVesselTouchDeviceCapabilities.h"
 #include "qVesselTouchLoopStats.h"
 
@@ -32,6 +33,10 @@ struct pqVesselTouchSessionStatus
   /// A device is open (the session runs on it); `deviceCapabilities` are then its own.
   bool deviceOpen = false;
   qVesselTouchDeviceCapabilities deviceCapabilities;
+  /// The open device calibrates raw axes (HID joysticks); `deviceCalibration` is then what it
+  /// applies (DeviceCalibrationInfo).
+  bool deviceHasCalibration = false;
+  qVesselTouchDeviceCalibration deviceCalibration;
   double agentForce_N[2] = { 0.0, 0.0 };
   /// Agent position, world mm.
   double agentPosition_mm[3] = { 0.0, 0.0, 0.0 };

@@ -34,10 +34,6 @@ pqVesselTouchShowAgentAction::pqVesselTouchShowAgentAction(QObject* parentObject
     &pqServerManagerModel::preSourceRemoved,
     this,
     &pqVesselTouchShowAgentAction::onSourceRemoved);
-  if (qEnvironmentVariableIntValue("VESSELTOUCH_GUI_AGENT") == 1)
-  {
-    this->setChecked(true);
-  }
 }
 
 pqVesselTouchShowAgentAction::~pqVesselTouchShowAgentAction() = default;

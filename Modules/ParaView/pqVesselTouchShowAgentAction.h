@@ -1,7 +1,7 @@
 // The toolbar's "Agent" toggle: draws the haptic session's agent in the active render view
 // (pqVesselTouchAgentDisplay), bound to the session proxy registered as "VesselTouchSession"
 // (vesseltouch.logic()) or else the first VesselTouchHapticSession, following the active view and
-// the sessions as they come and go. Checked at start-up when VESSELTOUCH_GUI_AGENT=1.
+// the sessions as they come and go.
 #ifndef pqVesselTouchShowAgentAction_h
 #define pqVesselTouchShowAgentAction_h
 

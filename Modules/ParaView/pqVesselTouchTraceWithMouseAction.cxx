@@ -37,10 +37,6 @@ pqVesselTouchTraceWithMouseAction::pqVesselTouchTraceWithMouseAction(QObject* pa
     this,
     [this](pqPipelineSource*)
     { QTimer::singleShot(0, this, &pqVesselTouchTraceWithMouseAction::rebind); });
-  if (qEnvironmentVariableIntValue("VESSELTOUCH_GUI_TRACE_MOUSE") == 1)
-  {
-    this->setChecked(true); // test hook, like VESSELTOUCH_GUI_AGENT
-  }
 }
 
 pqVesselTouchTraceWithMouseAction::~pqVesselTouchTraceWithMouseAction() = default;

@@ -12,6 +12,7 @@
 
 namespace
 {
+using vtouch::DeviceAxisCalibration;
 using vtouch::DeviceCalibration;
 using vtouch::DeviceState;
 using vtouch::DeviceStatus;
@@ -352,6 +353,43 @@ TEST(HidPidDevice, KeepsNewestReportWhenSeveralArePending)
   DeviceState s;
   ASSERT_EQ(device.read(s), DeviceStatus::Ok);
   EXPECT_NEAR(s.position_Device_mm.x, 50.0, 1e-9); // 255 of 0..255 over the default 100 mm
+}
+
+TEST(HidPidDevice, ReportsTheAxisCalibrationItAppliesAndAChangedOneMovesThePositions)
+{
+  // The SHIELD's X and Y are 8-bit logical values (0..255); the calibration maps them onto the
+  // workspace, and what axisCalibration() says is what read() does.
+  for (const double width_mm : { 100.0, 40.0 })
+  {
+    auto transport = std::make_shared<FakeHidTransport>(std::vector<FakeHidDevice>{ shield() });
+    HidPidDevice device(transport, "fake:shield");
+    DeviceCalibration c = testCalibration(PidEffectMode::Polar);
+    c.workspace_mm.x = width_mm;
+    device.setCalibration(c);
+    EXPECT_EQ(device.axisCalibration().axisCount, 0); // not open yet
+    ASSERT_EQ(device.open(), DeviceStatus::Ok) << device.lastError();
+    const DeviceAxisCalibration applied = device.axisCalibration();
+    ASSERT_EQ(applied.axisCount, 2);
+    EXPECT_DOUBLE_EQ(applied.axes[0].rawMinimum, 0.0);
+    EXPECT_DOUBLE_EQ(applied.axes[0].rawMaximum, 255.0);
+    EXPECT_DOUBLE_EQ(applied.axes[0].minimum_mm, -0.5 * width_mm);
+    EXPECT_DOUBLE_EQ(applied.axes[0].maximum_mm, 0.5 * width_mm);
+    EXPECT_GT(applied.axes[1].minimum_mm, applied.axes[1].maximum_mm); // HID y grows downward
+
+    transport->pushInput(Bytes{ 0x01, 255, 0x00, 0x00 }); // x at its raw maximum, y at its minimum
+    DeviceState s;
+    ASSERT_EQ(device.read(s), DeviceStatus::Ok);
+    EXPECT_NEAR(s.position_Device_mm.x, applied.axes[0].maximum_mm, 1e-9);
+    EXPECT_NEAR(s.position_Device_mm.y, applied.axes[1].minimum_mm, 1e-9);
+  }
+}
+
+TEST(HidPidDevice, ReportsNoAxisCalibrationForRelativeAxes)
+{
+  auto transport = std::make_shared<FakeHidTransport>(std::vector<FakeHidDevice>{ mouse() });
+  HidPidDevice device(transport, "fake:mouse");
+  ASSERT_EQ(device.open(), DeviceStatus::Ok) << device.lastError();
+  EXPECT_EQ(device.axisCalibration().axisCount, 0); // a mouse moves by counts per millimetre
 }
 
 TEST(HidPidDevice, IgnoresReportWhenTruncatedOrOfUnknownId)

@@ -183,6 +183,8 @@ if caps is not None:
                1e-12, "its force limit is the SimulatedMaxForce set")
     check.true(caps["max_stiffness_N_per_m"] > 0 and caps["sensed_dof"] >= 2,
                "stiffness limit and sensed axes (%r)" % caps)
+check.true(s.GetDeviceCalibration() is None,
+           "the simulated handle has no raw axes to calibrate (the panel hides the group)")
 s.Stop()
 check.true(not s.IsRunning(), "Stop stops the loop")
 check.true(s.GetDeviceCapabilities() is None, "after Stop no device is open")

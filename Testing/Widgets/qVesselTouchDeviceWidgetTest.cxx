@@ -3,6 +3,7 @@
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QGroupBox>
 #include <QLabel>
 #include <QSignalSpy>
 #include <QTest>
@@ -167,22 +168,35 @@ private slots:
     QCOMPARE(text(w, "dofValue"), QStringLiteral("-"));
   }
 
-  void editingTheCalibrationEmits()
+  void calibrationIsReadOnlyAndShownOnlyForAGivenHidCalibration()
   {
     qVesselTouchDeviceWidget w;
-    QSignalSpy spy(&w, &qVesselTouchDeviceWidget::calibrationChanged);
+    w.setAvailableDevices({ { "hid:1", "Wheel", "hid" }, { "pointer", "Mouse", "pointer" } });
+    w.setCurrentDeviceId("hid:1");
+    w.show();
+    auto* group = child<QGroupBox>(w, "calibrationGroup");
+    QVERIFY(!w.hasCalibration());
+    QVERIFY(!group->isVisible()); // no calibration given: nothing to show
+
     qVesselTouchDeviceCalibration c;
     c.axes[0] = { 0.0, 1000.0, 0.0, 100.0 };
     w.setCalibration(c);
-    QCOMPARE(spy.count(), 0); // programmatic: no signal
+    QVERIFY(group->isVisible());
+    auto* xMaximum = child<QDoubleSpinBox>(w, "xMaximumSpinBox");
     QCOMPARE(child<QDoubleSpinBox>(w, "xRawMaximumSpinBox")->value(), 1000.0);
     QCOMPARE(w.calibration().toMillimetres(0, 500.0), 50.0);
-
-    child<QDoubleSpinBox>(w, "xMaximumSpinBox")->setValue(200.0);
-    QCOMPARE(spy.count(), 1);
-    QCOMPARE(w.calibration().axes[0].maximum_mm, 200.0);
-    QCOMPARE(w.calibration().toMillimetres(0, 500.0), 100.0);
     QCOMPARE(w.calibration().toMillimetres(5, 500.0), 0.0); // no such axis
+    // A display of what the device applies, not a setting that would do nothing.
+    QVERIFY(xMaximum->isReadOnly());
+    QTest::keyClick(xMaximum, Qt::Key_Up);
+    QCOMPARE(w.calibration().axes[0].maximum_mm, 100.0);
+
+    w.setCurrentDeviceId("pointer"); // the mouse has no raw axes to calibrate
+    QVERIFY(!group->isVisible());
+    w.setCurrentDeviceId("hid:1");
+    QVERIFY(group->isVisible());
+    w.clearCalibration();
+    QVERIFY(!group->isVisible());
   }
 };
 

@@ -163,6 +163,38 @@ private slots:
     QCOMPARE(p.contactApproachAtStart, false);
     QCOMPARE(p.reindexButtonMask, 4u);
   }
+
+  void rowsNotActingOnTheForceLawAreGreyedOut()
+  {
+    // The table's "laws" column: ProxyFriction acts on the constraint proxy only,
+    // SlopeForceBudget on LDGF and change of height, ContactDwell on every law.
+    qVesselTouchHapticParameterForm w;
+    w.setParameterNames({ QStringLiteral("ProxyFriction"),
+      QStringLiteral("SlopeForceBudget"),
+      QStringLiteral("ContactDwell") });
+    const auto enabled = [&w](const char* name)
+    { return w.editor(QString::fromLatin1(name))->isEnabled(); };
+    QCOMPARE(w.forceLaw(), 0); // LDGF
+    QVERIFY(!enabled("ProxyFriction"));
+    QVERIFY(enabled("SlopeForceBudget"));
+    QVERIFY(enabled("ContactDwell"));
+    QVERIFY(w.editor(QStringLiteral("ProxyFriction"))->toolTip().contains("Constraint proxy"));
+
+    w.setForceLaw(static_cast<int>(vtouch::ForceLawId::ConstraintProxy));
+    QVERIFY(enabled("ProxyFriction"));
+    QVERIFY(!enabled("SlopeForceBudget"));
+    QVERIFY(enabled("ContactDwell"));
+
+    w.setForceLaw(static_cast<int>(vtouch::ForceLawId::None));
+    QVERIFY(!enabled("ProxyFriction"));
+    QVERIFY(!enabled("SlopeForceBudget"));
+    QVERIFY(enabled("ContactDwell"));
+    // Greyed out, the value is kept and still written.
+    vtouch::HapticParameters p;
+    p.proxyFriction = 0.3;
+    w.setParameters(p);
+    QCOMPARE(w.parameters().proxyFriction, 0.3);
+  }
 };
 
 QTEST_MAIN(qVesselTouchHapticParameterFormTest)

@@ -36,6 +36,8 @@ from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 from vtkmodules.vtkFiltersSources import vtkConeSource, vtkSphereSource
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer, vtkTexture
 
+from .vectors import cross, unit
+
 #: Agent colours (RGB 0-255): apex and sides, base, roll stripe, exploring cursor.
 SIDE_RGB = (230, 20, 20)
 BASE_RGB = (20, 40, 235)
@@ -87,14 +89,7 @@ def _cone_polydata(resolution=_RESOLUTION):
 
 
 def _unit(v):
-    n = math.sqrt(sum(c * c for c in v))
-    if n == 0.0 or not math.isfinite(n):
-        raise ValueError("AgentOverlay: the agent direction must be a non-zero finite vector")
-    return [c / n for c in v]
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    return unit(v, ValueError("AgentOverlay: the agent direction must be a non-zero finite vector"))
 
 
 def agent_matrix(position_mm, direction, roll_deg, size_mm):
@@ -106,10 +101,10 @@ def agent_matrix(position_mm, direction, roll_deg, size_mm):
     reference = [0.0, 0.0, 1.0] if abs(d[2]) < 0.9 else [1.0, 0.0, 0.0]
     dot = sum(r * c for r, c in zip(reference, d))
     u0 = _unit([r - dot * c for r, c in zip(reference, d)])
-    v0 = _cross(d, u0)
+    v0 = cross(d, u0)
     c, s = math.cos(math.radians(roll_deg)), math.sin(math.radians(roll_deg))
     u = [c * a + s * b for a, b in zip(u0, v0)]
-    v = _cross(d, u)
+    v = cross(d, u)
     k = float(size_mm)
     m = [0.0] * 16
     for row in range(3):

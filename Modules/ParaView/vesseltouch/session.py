@@ -35,6 +35,8 @@ from paraview import servermanager, simple
 
 from .delivery import CenterlineDelivery, is_remote
 from .haptic_parameters import HapticParameterAccess, _key
+from .session_camera import SessionCamera
+from .session_results import SessionResults
 
 __all__ = ["HapticSession", "logic", "SESSION_NAME", "FORCE_LAW_ALIASES", "DEVICES"]
 
@@ -45,33 +47,10 @@ FORCE_LAW_ALIASES = {"coh": "changeofheight", "lateral": "lateralgradient",
 #: Device names accepted by :meth:`HapticSession.SetDevice` -> the ``DeviceType`` value.
 DEVICES = {"simulated": 0, "pointer": 1, "mouse": 1, "replay": 2, "hid": 3}
 
-_STATISTICS = ("nominal_rate_Hz", "achieved_rate_Hz", "ticks", "overruns", "skipped_deadlines",
-               "period_error_p50_us", "period_error_p99_us", "period_error_p999_us",
-               "period_error_max_us", "tick_cost_p50_us", "tick_cost_p99_us", "tick_cost_max_us")
-_LOG_COLUMNS = {"Time": "time", "Hand": "hand", "Cursor": "cursor", "State": "state",
-                "Path": "path", "Point": "point", "Position": "position",
-                "TargetForce": "target_force", "Force": "force"}
-
 
 def _given(**values):
     """The keyword arguments that were given (not None)."""
     return {name: v for name, v in values.items() if v is not None}
-
-
-def _first(value):
-    """An information property's single value (servermanager gives a scalar or a list)."""
-    return value[0] if isinstance(value, (list, tuple)) else value
-
-
-def _normalized(v):
-    n = math.sqrt(sum(c * c for c in v))
-    if n == 0.0 or not math.isfinite(n):
-        raise RuntimeError("the session's camera is degenerate")
-    return [c / n for c in v]
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 
 
 def _centerline_port(centerline):
@@ -83,7 +62,7 @@ def _centerline_port(centerline):
     return centerline
 
 
-class HapticSession(HapticParameterAccess):
+class HapticSession(SessionCamera, SessionResults, HapticParameterAccess):
     """One haptic session: centerline + camera + device + force law + zones + zoom.
 
     ``centerline``: a VesselCenterline proxy, a VesselPhantom proxy (its port 1 is used) or any
@@ -91,6 +70,10 @@ class HapticSession(HapticParameterAccess):
     ``view``: a render view whose camera and size the session copies (SetCameraFromView);
     without one the camera looks at the centerline along -z (ResetCamera).
     ``proxy``: wrap an existing VesselTouchHapticSession proxy instead of creating one.
+
+    The camera methods come from :class:`SessionCamera` (session_camera.py), the log, status and
+    measures from :class:`SessionResults` (session_results.py), the haptic parameters by name
+    from :class:`HapticParameterAccess` (haptic_parameters.py).
     """
 
     def __init__(self, centerline=None, view=None, proxy=None, registrationName=None):
@@ -181,92 +164,6 @@ class HapticSession(HapticParameterAccess):
             self.ResetCamera()
         self.proxy.UpdatePipeline()  # the session reads the centerline: ready to Start()
         return self
-
-    def FollowView(self, view=None):
-        """Copies the camera of ``view`` (default: the active view) now and after every change of
-        it (a vtkCamera observer), so the haptic scene matches what is shown. FollowView(None)
-        after FollowView(view) keeps following the active view; UnfollowView() stops."""
-        view = view or simple.GetActiveView()
-        if view is None:
-            raise RuntimeError("FollowView: no render view")
-        self.UnfollowView()
-        camera = view.GetActiveCamera()
-        state = {"last": None}
-
-        def follow(*_):
-            current = (tuple(view.CameraPosition), tuple(view.CameraFocalPoint),
-                       tuple(view.CameraViewUp), view.CameraParallelScale,
-                       int(view.CameraParallelProjection), tuple(view.ViewSize))
-            if current != state["last"]:
-                state["last"] = current
-                self.SetCameraFromView(view)
-
-        self._follow = (camera, camera.AddObserver("ModifiedEvent", follow))
-        follow()
-
-    def ResetCamera(self, direction=(0.0, 0.0, -1.0), view_up=(0.0, 1.0, 0.0), size=None):
-        """An orthographic camera looking at the centerline's centre along ``direction`` (the
-        direction of projection), fitting the whole centerline. ``size``: (width, height) px."""
-        port = self.proxy.Input
-        if port is None:
-            raise RuntimeError("ResetCamera: no centerline")
-        port.UpdatePipeline()
-        bounds = port.GetDataInformation().GetBounds()
-        if bounds[0] > bounds[1]:
-            raise RuntimeError("ResetCamera: the centerline is empty")
-        centre = [0.5 * (bounds[2 * i] + bounds[2 * i + 1]) for i in range(3)]
-        radius = 0.5 * math.sqrt(sum((bounds[2 * i + 1] - bounds[2 * i]) ** 2 for i in range(3)))
-        norm = math.sqrt(sum(d * d for d in direction)) or 1.0
-        distance = 2.0 * radius + 1.0
-        position = [centre[i] - direction[i] / norm * distance for i in range(3)]
-        self.SetCamera(position=position, focal_point=centre, view_up=view_up, parallel=True,
-                       parallel_scale=0.0, size=size)
-
-    def SetCamera(self, position=None, focal_point=None, view_up=None, parallel=None,
-                  parallel_scale=None, view_angle=None, size=None):
-        """Camera in world mm (like vtkCamera); ``parallel_scale`` 0 fits the centerline;
-        ``size`` = (width, height) of the viewport in pixels. Rebuilds the view model."""
-        props = {}
-        if position is not None:
-            props["CameraPosition"] = list(position)
-        if focal_point is not None:
-            props["CameraFocalPoint"] = list(focal_point)
-        if view_up is not None:
-            props["CameraViewUp"] = list(view_up)
-        if parallel is not None:
-            props["CameraParallelProjection"] = 1 if parallel else 0
-        if parallel_scale is not None:
-            props["CameraParallelScale"] = parallel_scale
-        if view_angle is not None:
-            props["CameraViewAngle"] = view_angle
-        if size is not None:
-            props["ViewportSize"] = [int(size[0]), int(size[1])]
-        props["UseExplicitMatrices"] = 0
-        self._set(**props)
-
-    def SetCameraFromView(self, view=None):
-        """Copies the camera and size of a render view (default: the active view)."""
-        view = view or simple.GetActiveView()
-        if view is None:
-            raise RuntimeError("SetCameraFromView: no render view")
-        if hasattr(view.SMProxy, "SynchronizeCameraProperties"):
-            view.SMProxy.SynchronizeCameraProperties()  # the vtkCamera may have moved since
-        self.SetCamera(position=view.CameraPosition, focal_point=view.CameraFocalPoint,
-                       view_up=view.CameraViewUp, parallel=bool(view.CameraParallelProjection),
-                       parallel_scale=view.CameraParallelScale, view_angle=view.CameraViewAngle,
-                       size=view.ViewSize)
-
-    def SetCameraMatrices(self, view_matrix, projection_matrix, size=None):
-        """World->eye and eye->clip matrices, row-major (16 values or vtkMatrix4x4)."""
-        def flat(m):
-            if hasattr(m, "GetElement"):
-                return [m.GetElement(r, c) for r in range(4) for c in range(4)]
-            return [float(v) for v in m]
-        props = {"ViewMatrix": flat(view_matrix), "ProjectionMatrix": flat(projection_matrix),
-                 "UseExplicitMatrices": 1}
-        if size is not None:
-            props["ViewportSize"] = [int(size[0]), int(size[1])]
-        self._set(**props)
 
     # --- device ----------------------------------------------------------------------------
     def SetDevice(self, kind="simulated", path=None, mass_kg=None, damping_N_s_per_m=None,
@@ -483,230 +380,7 @@ class HapticSession(HapticParameterAccess):
     def ClearFault(self):
         self.proxy.InvokeCommand("ClearFault")
 
-    # --- results ---------------------------------------------------------------------------
-    def GetLog(self):
-        """The recorded log as NumPy arrays: time (s), hand (N x 2, device mm), cursor (N x 2,
-        px), state (0 exploring, 1 tracing), path, point, position (N x 3, world mm),
-        target_force and force (N x 2, N; force as sent to the device)."""
-        from paraview.vtk.util.numpy_support import vtk_to_numpy
-        if self._delivery is not None:
-            self._delivery.update()  # every process, before the client's session reads it
-        self.proxy.UpdatePipeline()
-        # The session's output is in this process in both modes (the proxy is client-side).
-        table = self.proxy.GetClientSideObject().GetOutputDataObject(0)
-        log = {}
-        for column, key in _LOG_COLUMNS.items():
-            array = table.GetColumnByName(column) if table is not None else None
-            log[key] = vtk_to_numpy(array).copy() if array is not None else None
-        return log
 
-    def GetStatistics(self):
-        """Real-time loop statistics (rates in Hz, period error and tick cost in us)."""
-        return dict(zip(_STATISTICS, self._info("StatisticsInfo")))
-
-    def GetAgentState(self):
-        """The agent as last published by the haptic thread (or the last offline tick).
-        ``torsion_angle`` is the cone's roll about its apex: a rotation-minimising frame carried
-        along the agent's path, rolled by the integrated torsion (Yi & Hayward section 7)."""
-        v = list(self._info("AgentStateInfo"))
-        state, at = {}, 0
-        # The layout comes from the session (vtouchAgentStateLayout.h), not from a copy here.
-        for field in str(self._info("AgentStateLayoutInfo")).split():
-            name, components, kind = field.split(":")
-            n = int(components)
-            values = [int(x) for x in v[at:at + n]] if kind == "i" else v[at:at + n]
-            state[name] = values[0] if n == 1 else values
-            at += n
-        return state
-
-    def GetStatus(self):
-        """running, fault code and text, log length, dropped log entries, skeleton size."""
-        v = list(self._info("SessionStatusInfo"))
-        return {"running": bool(v[0]), "fault": int(v[1]), "log_entries": int(v[2]),
-                "dropped_log_entries": int(v[3]), "paths": int(v[4]), "points": int(v[5]),
-                "fault_text": self._info("FaultInfo"),
-                "scheduler": self._info("SchedulerNoticeInfo"),
-                "realtime_scheduling": _first(self._info("RealTimeSchedulingInfo")) == 1}
-
-    def GetDeviceCapabilities(self):
-        """What the open device can do, or None when no device is open (before Start, after
-        Stop): name, sensed/actuated DOF, workspace (mm), largest continuous force (N), largest
-        stable stiffness (N/m), fastest update rate (Hz), pressure input, position resolution
-        (mm), buttons."""
-        v = list(self._info("DeviceCapabilitiesInfo"))
-        if not v or v[0] < 0.5:
-            return None
-        return {"name": self._info("DeviceNameInfo") or "", "sensed_dof": int(v[1]),
-                "actuated_dof": int(v[2]), "workspace_mm": v[3:6],
-                "max_continuous_force_N": v[6], "max_stiffness_N_per_m": v[7],
-                "max_update_rate_Hz": v[8], "has_pressure": v[9] > 0.5,
-                "position_resolution_mm": v[10], "buttons": int(v[11])}
-
-    def GetLastError(self):
-        """The last error of the session ("" when none)."""
-        return self._info("LastErrorInfo") or ""
-
-    def UnfollowView(self):
-        """Stops FollowView()."""
-        follow = getattr(self, "_follow", None)
-        if follow is not None:
-            follow[0].RemoveObserver(follow[1])
-        self._follow = None
-
-    def GetCameraFrame(self):
-        """The session's camera as (position, right, up, forward) unit vectors in world mm:
-        ``right``/``up`` are the screen (= device) x/y axes, ``forward`` the viewing direction."""
-        p = self.proxy
-        if p.GetProperty("UseExplicitMatrices").GetData():
-            m = list(p.GetProperty("ViewMatrix").GetData())  # row-major world -> eye
-            right, up, back = m[0:3], m[4:7], m[8:11]
-            rotation_t = [[m[4 * c + r] for c in range(3)] for r in range(3)]
-            t = [m[3], m[7], m[11]]
-            position = [-sum(rotation_t[r][c] * t[c] for c in range(3)) for r in range(3)]
-            return position, _normalized(right), _normalized(up), _normalized([-v for v in back])
-        position = list(p.GetProperty("CameraPosition").GetData())
-        focal = list(p.GetProperty("CameraFocalPoint").GetData())
-        forward = _normalized([f - q for f, q in zip(focal, position)])
-        right = _normalized(_cross(forward, list(p.GetProperty("CameraViewUp").GetData())))
-        return position, right, _cross(right, forward), forward
-
-    def GetTraceMeasures(self, log=None, window_s=0.01):
-        """What a person feels along a trace, from a log (default: GetLog()) and the session's
-        camera: a dict of NumPy arrays ``time`` (s), ``tracing`` (bool), ``force_magnitude`` (N),
-        ``force_along_travel`` (N, the force projected on the agent's on-screen direction of
-        travel over ``window_s``: negative pushes back, positive pulls on; 0 where the agent
-        does not move) and ``depth_mm`` (the agent's distance along the viewing direction:
-        larger is farther from the viewer)."""
-        import numpy
-        log = log if log is not None else self.GetLog()
-        position, right, up, forward = (numpy.asarray(v, dtype=float)
-                                        for v in self.GetCameraFrame())
-        time = numpy.asarray(log["time"], dtype=float)
-        agent = numpy.asarray(log["position"], dtype=float)
-        force = numpy.asarray(log["force"], dtype=float)
-        tracing = numpy.asarray(log["state"]) == 1
-        depth = (agent - position) @ forward
-        screen = numpy.stack([agent @ right, agent @ up], axis=1)
-        step = max(1, int(round(window_s / (time[1] - time[0])))) if len(time) > 1 else 1
-        travel = numpy.zeros_like(screen)
-        if len(time) > step:
-            travel[step:] = screen[step:] - screen[:-step]
-            travel[:step] = travel[step]
-        length = numpy.linalg.norm(travel, axis=1)
-        moving = tracing & (length > 1e-6)
-        along = numpy.zeros(len(time))
-        along[moving] = (force[moving] * travel[moving]).sum(axis=1) / length[moving]
-        return {"time": time, "tracing": tracing, "force_magnitude": numpy.linalg.norm(force, axis=1),
-                "force_along_travel": along, "depth_mm": depth}
-
-    def SaveLog(self, filename, log=None):
-        """Writes a log (default: GetLog()) and its GetTraceMeasures() to ``filename``: a NumPy
-        ``.npz`` (one array per key; vectors keep their columns) or a ``.csv`` (one row per
-        tick, vector columns split as name_0, name_1, ...). Returns the file name."""
-        import numpy
-        log = log if log is not None else self.GetLog()
-        data = {k: numpy.asarray(v) for k, v in log.items() if v is not None}
-        data.update(self.GetTraceMeasures(log))
-        if str(filename).endswith(".csv"):
-            names, columns = [], []
-            for key, value in data.items():
-                value = value.reshape(len(value), -1).astype(float)
-                for c in range(value.shape[1]):
-                    names.append(key if value.shape[1] == 1 else "%s_%d" % (key, c))
-                    columns.append(value[:, c])
-            numpy.savetxt(filename, numpy.stack(columns, axis=1), delimiter=",",
-                          header=",".join(names), comments="", fmt="%.9g")
-        else:
-            numpy.savez(filename, **data)
-        return filename
-
-
-#: Name under which the module-wide session is registered (group "sources"); the VesselTouch
-#: panel binds to the proxy of this name, whichever side (C++ panel or Python) created it.
-SESSION_NAME = "VesselTouchSession"
-
-_LOGIC = None
-
-
-def _registered_sessions():
-    """The VesselTouchHapticSession proxies registered as SESSION_NAME in the active connection's
-    proxy manager, oldest first (ParaView keeps them in registration order)."""
-    if servermanager.ActiveConnection is None:
-        return []
-    pxm = servermanager.ProxyManager()
-    proxies = pxm.GetProxies("sources", SESSION_NAME) or []
-    return [p for p in proxies if p.GetXMLName() == "VesselTouchHapticSession"]
-
-
-def _registered_session():
-    """The newest VesselTouchHapticSession proxy registered as SESSION_NAME, or None."""
-    sessions = _registered_sessions()
-    return sessions[-1] if sessions else None
-
-
-def _same(a, b):
-    return a is not None and b is not None and a.SMProxy.__this__ == b.SMProxy.__this__
-
-
-def _stop(proxy):
-    try:
-        proxy.InvokeCommand("Stop")
-    except Exception:  # a proxy half gone (its connection closing): nothing runs any more
-        pass
-
-
-_WATCHED = {}
-
-
-def _watch_registrations():
-    """Stops an older session as soon as a newer one is registered as SESSION_NAME (a state file
-    loaded with LoadState while a session runs: ParaView adds the state's proxies beside the
-    existing ones), so the old loop zeroes its force at once, also in pvpython where no panel
-    watches. One observer per proxy manager; logic() drops the stopped one afterwards."""
-    if servermanager.ActiveConnection is None:
-        return
-    pxm = servermanager.ProxyManager().SMProxyManager
-    key = pxm.__this__
-    if key in _WATCHED:
-        return
-
-    def on_register(*_):
-        sessions = _registered_sessions()
-        for old in sessions[:-1]:
-            _stop(old)
-
-    _WATCHED.clear()  # an earlier connection's proxy manager is gone
-    _WATCHED[key] = pxm.AddObserver("RegisterEvent", on_register)
-
-
-def logic():
-    """The module-level session shared by the GUI panel and the Python console.
-
-    If a proxy registered as ``"VesselTouchSession"`` exists (the panel may create it from C++,
-    or the main job's start-up script from Python), that proxy is adopted; otherwise a new one is
-    created and registered under that name. A session whose proxy was deleted (``Delete``,
-    ``ResetSession()``, a new connection) is replaced by a new one, so ``logic()`` always returns
-    the session the panel shows.
-
-    One session at a time: a state file loaded while a session exists (``LoadState``, File > Load
-    State) registers its own ``"VesselTouchSession"`` beside it. The loaded (newest) one is the
-    session from then on: the old one is stopped as soon as the new one is registered (force to
-    zero) and deleted here (the GUI panel deletes it at once), so exactly one stays registered.
-    The loaded session does not start by itself."""
-    global _LOGIC
-    _watch_registrations()
-    sessions = _registered_sessions()
-    for old in sessions[:-1]:
-        _stop(old)
-        simple.Delete(old)
-    registered = sessions[-1] if sessions else None
-    if registered is not None:
-        if _LOGIC is None or not _same(_LOGIC.proxy, registered):
-            if _LOGIC is not None:
-                _LOGIC.UnfollowView()
-            _LOGIC = HapticSession(proxy=registered)
-        return _LOGIC
-    if _LOGIC is not None:
-        _LOGIC.UnfollowView()
-    _LOGIC = HapticSession(registrationName=SESSION_NAME)
-    return _LOGIC
+# logic() and SESSION_NAME live in session_registry.py; imported last, since logic() builds a
+# HapticSession (``from vesseltouch.session import logic`` keeps working).
+from .session_registry import SESSION_NAME, logic  # noqa: E402

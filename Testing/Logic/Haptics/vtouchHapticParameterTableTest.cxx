@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -45,6 +46,28 @@ TEST(HapticParameterTable, NamesAreUniqueAndEveryRowIsDescribed)
   EXPECT_EQ(names.size(), vtouch::kHapticParameterCount);
   EXPECT_EQ(vtouch::findHapticParameter("NoSuchParameter"), nullptr);
   EXPECT_EQ(vtouch::findHapticParameter(nullptr), nullptr);
+}
+
+TEST(HapticParameterTable, LawsNameForceLawChoices)
+{
+  // The "laws" column names force laws by the ForceLaw row's choice labels ("" for every law).
+  const std::string choices =
+    std::string("|") + vtouch::hapticParameter(vtouch::HapticParameterId::ForceLaw).choices + "|";
+  for (const HapticParameterDescriptor& d : vtouch::kHapticParameterDescriptors)
+  {
+    const std::string laws = d.forceLaws;
+    std::size_t start = 0;
+    while (!laws.empty() && start <= laws.size())
+    {
+      const std::size_t end = std::min(laws.find('|', start), laws.size());
+      const std::string law = laws.substr(start, end - start);
+      EXPECT_NE(choices.find("|" + law + "|"), std::string::npos)
+        << d.name << " names '" << law << "', not a ForceLaw choice";
+      start = end + 1;
+    }
+  }
+  EXPECT_STREQ(vtouch::findHapticParameter("ProxyFriction")->forceLaws, "Constraint proxy");
+  EXPECT_STREQ(vtouch::findHapticParameter("Zoom")->forceLaws, "");
 }
 
 TEST(HapticParameterTable, DefaultsAreTheStructsAndInsideTheirRanges)

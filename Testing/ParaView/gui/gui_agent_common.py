@@ -9,6 +9,8 @@ import subprocess
 import tempfile
 import time
 
+from gui_paraview import paraview_command
+
 
 class ParaViewRun:
     """ParaView running the scene script with ``extra_env``; ``check(condition, message)``
@@ -33,9 +35,7 @@ class ParaViewRun:
         self.env.update(extra_env)
         scene = os.path.join(os.path.dirname(os.path.abspath(__file__)),
                              "gui_agent_cone_scene.py")
-        command = [self.env["VESSELTOUCH_PARAVIEW"],
-                   "--plugin-search-paths=" + self.env["VESSELTOUCH_PLUGIN_DIR"],
-                   "--plugins=VesselTouch", "--script=" + scene]
+        command = paraview_command(self.env, scene)
         self.log = open(os.path.join(self.work, "paraview.log"), "w")
         self.app = subprocess.Popen(command, env=self.env, stdout=self.log,
                                     stderr=subprocess.STDOUT)

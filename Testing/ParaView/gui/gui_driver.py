@@ -16,6 +16,8 @@ import subprocess
 import tempfile
 import time
 
+from gui_paraview import paraview_command
+
 
 class GuiDriver:
     """ParaView running gui_scene.py with ``scene``; ``check(condition, message)`` records
@@ -43,9 +45,7 @@ class GuiDriver:
         })
         self.env.update(extra_env or {})
         script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "gui_scene.py")
-        command = [self.env["VESSELTOUCH_PARAVIEW"],
-                   "--plugin-search-paths=" + self.env["VESSELTOUCH_PLUGIN_DIR"],
-                   "--plugins=VesselTouch", "--script=" + script]
+        command = paraview_command(self.env, script)
         self.log = open(os.path.join(self.work, "paraview.log"), "w")
         self.app = subprocess.Popen(command, env=self.env, stdout=self.log,
                                     stderr=subprocess.STDOUT)

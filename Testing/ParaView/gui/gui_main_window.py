@@ -16,6 +16,8 @@ import time
 
 import matplotlib.image
 
+from gui_paraview import paraview_command
+
 failures = []
 
 
@@ -41,8 +43,7 @@ env.update({
     "VESSELTOUCH_OUTPUT_DIR": os.path.join(work, "out"),
 })
 startup = os.path.join(env["VESSELTOUCH_SOURCE_DIR"], "Utilities", "vesseltouch_startup.py")
-command = [env["VESSELTOUCH_PARAVIEW"], "--plugin-search-paths=" + env["VESSELTOUCH_PLUGIN_DIR"],
-           "--plugins=VesselTouch", "--script=" + startup]
+command = paraview_command(env, startup)
 log = open(os.path.join(work, "paraview.log"), "w")
 app = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT)
 try:

@@ -20,6 +20,8 @@ import sys
 import tempfile
 import time
 
+from gui_paraview import paraview_command
+
 failures = []
 
 
@@ -51,8 +53,7 @@ env.update({
     "VESSELTOUCH_DONE_FLAG": os.path.join(work, "done"),
 })
 startup = os.path.join(env["VESSELTOUCH_SOURCE_DIR"], "Utilities", "vesseltouch_startup.py")
-command = [env["VESSELTOUCH_PARAVIEW"], "--plugin-search-paths=" + env["VESSELTOUCH_PLUGIN_DIR"],
-           "--plugins=VesselTouch", "--script=" + startup]
+command = paraview_command(env, startup)
 log_path = os.path.join(work, "paraview.log")
 log = open(log_path, "w")
 app = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT)

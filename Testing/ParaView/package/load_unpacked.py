@@ -13,11 +13,9 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import readme_example  # noqa: E402
+from package_archive import newest_archive  # noqa: E402
 
-package_dir = os.environ["VESSELTOUCH_PACKAGE_DIR"]
-archives = sorted(glob.glob(os.path.join(package_dir, "VesselTouch-*.tar.gz")))
-if not archives:
-    sys.exit("no VesselTouch-*.tar.gz in %s" % package_dir)
+archive_path = newest_archive()
 
 #: What the package must hold (globs relative to its top folder).
 REQUIRED = (
@@ -43,7 +41,7 @@ def plugin_embeds_python(plugin):
 
 
 with tempfile.TemporaryDirectory(prefix="vesseltouch-package-") as tmp:
-    with tarfile.open(archives[-1]) as archive:
+    with tarfile.open(archive_path) as archive:
         archive.extractall(tmp)
     plugins = glob.glob(os.path.join(tmp, "*", "lib", "paraview-5.11", "plugins", "VesselTouch",
                                      "VesselTouch.so"))
@@ -89,4 +87,4 @@ with tempfile.TemporaryDirectory(prefix="vesseltouch-package-") as tmp:
                      % (name, result.returncode))
         if name == "README example" and "build/lib" in result.stdout:
             sys.exit("the README example reached into the build tree")
-print("package test passed:", os.path.basename(archives[-1]))
+print("package test passed:", os.path.basename(archive_path))

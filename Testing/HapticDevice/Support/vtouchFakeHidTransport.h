@@ -1,5 +1,6 @@
 // A scripted HidTransport: replays a report descriptor and input reports, records every report
-// the driver sends, and can be unplugged or made to fail. For tests, demos and the CLI's --fake.
+// the driver sends, and can be unplugged or made to fail. For the tests and fuzzers only:
+// it lives under Testing/ and never ships in the plugin (issue 18, item 4).
 #pragma once
 
 #include "vtouchHidTransport.h"
