@@ -325,6 +325,9 @@ def section_gui(build, quick, tmp):
     env.update({"VESSELTOUCH_PARAVIEW": shutil.which("paraview") or "paraview",
                 "VESSELTOUCH_PLUGIN_DIR": exe(build, "lib", "paraview-5.11", "plugins",
                                               "VesselTouch"),
+                # The tests' command driver (not in the product plugin: Testing/ParaView/driver).
+                "VESSELTOUCH_TEST_DRIVER_DIR": exe(build, "lib", "paraview-5.11", "plugins",
+                                                   "VesselTouchTestDriver"),
                 "VESSELTOUCH_BINARY_DIR": os.path.join(tmp, "gui")})
     cmd = [os.path.join(ROOT, "Testing", "Utilities", "vtouch-xvfb-run"), "/usr/bin/python3",
            os.path.join(ROOT, "Testing", "ParaView", "gui", "bench_camera_drag.py"),

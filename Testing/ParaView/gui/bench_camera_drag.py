@@ -5,7 +5,7 @@
     Testing/Utilities/vtouch-xvfb-run /usr/bin/python3 Testing/ParaView/gui/bench_camera_drag.py \
         --json out.json [--seconds 4]
 
-with VESSELTOUCH_PARAVIEW, VESSELTOUCH_PLUGIN_DIR and VESSELTOUCH_BINARY_DIR set (run_bench.py
+with VESSELTOUCH_PARAVIEW, VESSELTOUCH_PLUGIN_DIR, VESSELTOUCH_TEST_DRIVER_DIR and VESSELTOUCH_BINARY_DIR set (run_bench.py
 sets them). The scene of gui_scene.py "tracing" (the phantom as a MIP, the session running with the
 pointer device, "Trace with mouse" on). Two phases of the same length, each on a freshly
 restarted session (its loop statistics start at zero): "idle" (the mouse traces slowly) and

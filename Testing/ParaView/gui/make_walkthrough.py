@@ -4,7 +4,7 @@ under Xvfb, on the shared TOF-MRA (circle of Willis):
     Testing/Utilities/vtouch-xvfb-run /usr/bin/python3 Testing/ParaView/gui/make_walkthrough.py \
         Docs/using
 
-with VESSELTOUCH_PARAVIEW, VESSELTOUCH_PLUGIN_DIR and VESSELTOUCH_BINARY_DIR set (as ctest sets
+with VESSELTOUCH_PARAVIEW, VESSELTOUCH_PLUGIN_DIR, VESSELTOUCH_TEST_DRIVER_DIR and VESSELTOUCH_BINARY_DIR set (as ctest sets
 them; see Testing/ParaView/CMakeLists.txt). Each step is done as a user does it (the toolbar's
 actions, the panel's buttons, clicks in the view through the X server) and the screen is saved.
 """
