@@ -30,7 +30,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [HERE, os.path.dirname(HERE)]  # vtouch_pvserver here, vtouch_testing above
-from vtouch_pvserver import ParallelServer, port_is_free, wait_until  # noqa: E402
+from vtouch_pvserver import run_connected, wait_until  # noqa: E402
 from vtouch_testing import Check, plugin_path  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
@@ -101,7 +101,7 @@ def remote_session(reference, voxel_mm, volume_path):
     check(0 < pieces.GetNumberOfPoints() < whole,
           "the volume is read in pieces across the ranks (rank 1 holds %d of %d voxels)"
           % (pieces.GetNumberOfPoints(), whole))
-    centerline = VesselCenterline(Input=volume)  # noqa: F821
+    centerline = simple.VesselCenterline(Input=volume)
     centerline.UpdatePipeline()
     s = vesseltouch.logic()
     location = s.proxy.SMProxy.GetLocation()
@@ -139,25 +139,9 @@ def main():
     volume_path = os.path.join(folder, "tree.vti")
     reference, voxel_mm = builtin_reference(volume_path)
     simple.Disconnect()
-    server = ParallelServer(ranks=2)
     try:
-        server.start()
-        port = server.port
-        simple.Connect("127.0.0.1", port)
-        simple.LoadPlugin(PLUGIN, remote=True, ns=globals())
-        simple.LoadPlugin(PLUGIN, remote=False, ns=globals())
-        check(sm.ActiveConnection.GetNumberOfDataPartitions() == 2,
-              "the server has %d ranks, not 2" % sm.ActiveConnection.GetNumberOfDataPartitions())
-        remote_session(reference, voxel_mm, volume_path)
-        simple.Disconnect()
-        code = server.stop()
-        check(code is not None, "the server did not exit after the client disconnected")
-        check(wait_until(lambda: port_is_free(port), 10.0), "port %d is still taken" % port)
-    except Exception as e:  # noqa: BLE001 - report the server's output with any failure
-        check(False, "%s: %s" % (type(e).__name__, e))
-        print("server output:\n" + server.output())
+        run_connected(PLUGIN, check, lambda: remote_session(reference, voxel_mm, volume_path))
     finally:
-        server.stop()
         shutil.rmtree(folder, ignore_errors=True)
     CHECK.finish()
 

@@ -28,7 +28,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [HERE, os.path.dirname(HERE)]  # vtouch_pvserver here, vtouch_testing above
-from vtouch_pvserver import ParallelServer, port_is_free, wait_until  # noqa: E402
+from vtouch_pvserver import run_connected  # noqa: E402
 from vtouch_testing import Check, plugin_path, test_volume_writer  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
@@ -157,15 +157,7 @@ def main():
     path = os.path.join(folder, "volume.nrrd")
     subprocess.run([test_volume_writer(), "volume", path, "axial", "int16"] + [str(s) for s in size],
                    check=True, stdout=subprocess.DEVNULL)
-    server = ParallelServer(ranks=2)
-    try:
-        server.start()
-        port = server.port
-        simple.Connect("127.0.0.1", port)
-        simple.LoadPlugin(PLUGIN, remote=True, ns=globals())
-        simple.LoadPlugin(PLUGIN, remote=False, ns=globals())
-        check(sm.ActiveConnection.GetNumberOfDataPartitions() == 2,
-              "the server has %d ranks, not 2" % sm.ActiveConnection.GetNumberOfDataPartitions())
+    def body():
         reader = simple.OpenDataFile(path)
         check(reader.GetXMLName().startswith("Anatomical"),
               "the server opened the NRRD with %s, not the VesselTouch reader" % reader.GetXMLName())
@@ -173,15 +165,10 @@ def main():
         check_pieces(reader, size)
         check_voxels(reader, size)
         check_mip(reader, folder)
-        simple.Disconnect()
-        code = server.stop()
-        check(code is not None, "the server did not exit after the client disconnected")
-        check(wait_until(lambda: port_is_free(port), 10.0), "port %d is still taken" % port)
-    except Exception as e:  # noqa: BLE001 - report the server's output with any failure
-        check(False, "%s: %s" % (type(e).__name__, e))
-        print("server output:\n" + server.output())
+
+    try:
+        run_connected(PLUGIN, check, body)
     finally:
-        server.stop()
         shutil.rmtree(folder, ignore_errors=True)
     CHECK.finish()
 

@@ -130,3 +130,31 @@ def wait_until(condition, timeout_s, step_s=0.1):
         if value or time.monotonic() > end:
             return value
         time.sleep(step_s)
+
+
+def run_connected(plugin, check, body, ranks=2):
+    """The client/server tests' frame: starts a `ranks`-rank pvserver, connects pvpython to it,
+    loads `plugin` on both sides (the same file) and checks the rank count, runs body(), then
+    disconnects and checks that the server exits and frees its port. Any exception is a failed
+    check, reported with the server's output; the server is always ended."""
+    from paraview import servermanager as sm
+    from paraview import simple
+    server = ParallelServer(ranks=ranks)
+    try:
+        server.start()
+        port = server.port
+        simple.Connect("127.0.0.1", port)
+        simple.LoadPlugin(plugin, remote=True)
+        simple.LoadPlugin(plugin, remote=False)
+        partitions = sm.ActiveConnection.GetNumberOfDataPartitions()
+        check(partitions == ranks, "the server has %d ranks, not %d" % (partitions, ranks))
+        body()
+        simple.Disconnect()
+        code = server.stop()
+        check(code is not None, "the server did not exit after the client disconnected")
+        check(wait_until(lambda: port_is_free(port), 10.0), "port %d is still taken" % port)
+    except Exception as e:  # noqa: BLE001 - report the server's output with any failure
+        check(False, "%s: %s" % (type(e).__name__, e))
+        print("server output:\n" + server.output())
+    finally:
+        server.stop()
