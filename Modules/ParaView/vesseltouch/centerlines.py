@@ -2,6 +2,8 @@
 
 from paraview import servermanager, simple
 
+from .connection import require_server_plugin
+
 __all__ = ["ExtractCenterlines", "IntensityRangeUsed", "ExtractionMessage"]
 
 
@@ -37,6 +39,7 @@ def ExtractCenterlines(volume=None, seed=None, lower=None, upper=None, port=0,
     volume = volume or simple.GetActiveSource()
     if volume is None:
         raise ValueError("ExtractCenterlines: no volume given and no active source")
+    require_server_plugin("ExtractCenterlines")
     source = servermanager.OutputPort(volume, port) if port else volume
     lo, hi = _scalar_range(source)
     params = dict(properties)

@@ -17,15 +17,11 @@ server that is not sending.
 
 from paraview import servermanager
 
+from .connection import is_remote
+
 __all__ = ["is_remote", "CenterlineDelivery"]
 
 _VTK_POLY_DATA = 0
-
-
-def is_remote():
-    """True when the active connection is to a separate pvserver (client/server mode)."""
-    connection = servermanager.ActiveConnection
-    return connection is not None and bool(connection.IsRemote())
 
 
 class CenterlineDelivery:

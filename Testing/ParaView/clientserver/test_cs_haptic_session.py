@@ -17,7 +17,9 @@ pvpython connects and loads the plugin on both sides from the same file, and:
 - a scripted trace (simulated device, the hand sweeping path 0, RunOffline) runs in the client:
   its log reaches the tracing state with finite forces below the limit;
 - the real-time loop starts on its thread in the client and ticks, then stops;
-- after Disconnect the server exits within its time-out and the port is free again.
+- after Disconnect the server exits within its time-out and the port is free again;
+- connected to a server that did not load the plugin, vesseltouch.ExtractCenterlines refuses with
+  the reason and what to do, and the server still answers.
 Exits non-zero on any failure.
 """
 
@@ -134,6 +136,27 @@ def remote_session(reference, voxel_mm, volume_path):
     check(not s.IsRunning(), "the session stopped")
 
 
+def server_without_plugin():
+    """A server that never loaded the plugin (its filters are not defined in this session):
+    VesselTouch refuses with the reason and what to do, and the connection stays usable."""
+    import vesseltouch
+    from vesseltouch.connection import server_has_plugin
+    check(not server_has_plugin(), "the server is seen without the VesselTouch plugin")
+    volume = simple.Wavelet()  # a source every pvserver has
+    volume.UpdatePipeline()
+    message = ""
+    try:
+        vesseltouch.ExtractCenterlines(volume)
+    except RuntimeError as e:
+        message = str(e)
+    print("refusal: %s" % message)
+    check("has not loaded the VesselTouch plugin" in message and "remote=True" in message,
+          "ExtractCenterlines says the server lacks the plugin and what to do (%r)" % message)
+    volume.UpdatePipeline(1.0)  # the server still answers
+    check(volume.GetDataInformation().GetNumberOfPoints() > 0,
+          "the server still works after the refusal")
+
+
 def main():
     folder = tempfile.mkdtemp(prefix="vtouch-cs-session-")
     volume_path = os.path.join(folder, "tree.vti")
@@ -141,6 +164,7 @@ def main():
     simple.Disconnect()
     try:
         run_connected(PLUGIN, check, lambda: remote_session(reference, voxel_mm, volume_path))
+        run_connected(PLUGIN, check, server_without_plugin, remote_plugin=False)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     CHECK.finish()

@@ -132,9 +132,10 @@ def wait_until(condition, timeout_s, step_s=0.1):
         time.sleep(step_s)
 
 
-def run_connected(plugin, check, body, ranks=2):
+def run_connected(plugin, check, body, ranks=2, remote_plugin=True):
     """The client/server tests' frame: starts a `ranks`-rank pvserver, connects pvpython to it,
-    loads `plugin` on both sides (the same file) and checks the rank count, runs body(), then
+    loads `plugin` on both sides (the same file; only in the client when `remote_plugin` is
+    False) and checks the rank count, runs body(), then
     disconnects and checks that the server exits and frees its port. Any exception is a failed
     check, reported with the server's output; the server is always ended."""
     from paraview import servermanager as sm
@@ -144,7 +145,8 @@ def run_connected(plugin, check, body, ranks=2):
         server.start()
         port = server.port
         simple.Connect("127.0.0.1", port)
-        simple.LoadPlugin(plugin, remote=True)
+        if remote_plugin:
+            simple.LoadPlugin(plugin, remote=True)
         simple.LoadPlugin(plugin, remote=False)
         partitions = sm.ActiveConnection.GetNumberOfDataPartitions()
         check(partitions == ranks, "the server has %d ranks, not %d" % (partitions, ranks))
