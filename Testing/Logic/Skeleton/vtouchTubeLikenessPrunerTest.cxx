@@ -121,6 +121,23 @@ double coverage(const QSkeleton& s, const Vec3& a, const Vec3& b, double margin,
 }
 
 const TubeLikenessPruner::Geometry kUnit{};
+
+/// A tube of radius 2.5 voxels along x with a plate 4 voxels thick lying on its face (0.5 voxel
+/// overlap, as VesselPhantom's clutter), 36 x 36 voxels wide: the pruner's and the tracker's scene.
+struct TubeUnderPlate
+{
+  const Dims dims{ 72, 56, 40 };
+  const Vec3 a{ 3, 28, 14 };
+  const Vec3 b{ 68, 28, 14 };
+  const SparseVesselMask mask = makeMask(dims,
+    [this](const Vec3& p)
+    {
+      const bool onPlate =
+        p.z >= 16 && p.z <= 19 && p.x >= 18 && p.x <= 53 && p.y >= 10 && p.y <= 45;
+      return segmentDistance(p, this->a, this->b) <= 2.5 || onPlate;
+    });
+};
+
 } // namespace
 
 TEST(TubeLikenessPruner, SectionOfATubeIsTubeLikeAndOfAPlateIsNot)
@@ -204,16 +221,12 @@ TEST(TubeLikenessPruner, RemovesThePathsOfAPlateTouchingATubeAndKeepsTheTube)
 {
   // A tube of radius 2.5 along x; a plate 4 voxels thick lies on its face (0.5 voxel overlap, as
   // VesselPhantom's clutter), 36 x 36 voxels wide: its rims are tube-like at their own scale.
-  const Dims dims{ 72, 56, 40 };
-  const Vec3 a{ 3, 28, 14 }, b{ 68, 28, 14 };
-  const auto onPlate = [](const Vec3& p)
-  { return p.z >= 16 && p.z <= 19 && p.x >= 18 && p.x <= 53 && p.y >= 10 && p.y <= 45; };
-  const SparseVesselMask mask =
-    makeMask(dims, [&](const Vec3& p) { return segmentDistance(p, a, b) <= 2.5 || onPlate(p); });
-  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  const TubeUnderPlate scene;
+  const Vec3 a = scene.a, b = scene.b;
+  QSkeleton s = code(scene.dims, scene.mask, a + Vec3{ 2, 0, 0 });
   const std::vector<std::array<Vec3, 2>> axis{ { a, b } };
   const double offBefore = shareOff(s, axis, 2.5);
-  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
+  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(scene.mask), kUnit);
   const double offAfter = shareOff(s, axis, 2.5);
   std::cout << "plate on a tube: paths removed " << r.pathsRemoved << ", ends trimmed "
             << r.endsTrimmed << ", points off the tube " << offBefore << " -> " << offAfter
@@ -312,15 +325,11 @@ TEST(TubeSectionTracker, ReTracesATubeWhereAPlateLiesOnIt)
   // The pruner's scene: a plate 4 voxels thick lies on a tube of radius 2.5 (0.5 voxel overlap,
   // as VesselPhantom's clutter). The coder's axis of the union leans ~2 voxels toward the plate
   // along the contact; the tube's own section puts it back.
-  const Dims dims{ 72, 56, 40 };
-  const Vec3 a{ 3, 28, 14 }, b{ 68, 28, 14 };
-  const auto onPlate = [](const Vec3& p)
-  { return p.z >= 16 && p.z <= 19 && p.x >= 18 && p.x <= 53 && p.y >= 10 && p.y <= 45; };
-  const SparseVesselMask mask =
-    makeMask(dims, [&](const Vec3& p) { return segmentDistance(p, a, b) <= 2.5 || onPlate(p); });
-  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  const TubeUnderPlate scene;
+  const Vec3 a = scene.a, b = scene.b;
+  QSkeleton s = code(scene.dims, scene.mask, a + Vec3{ 2, 0, 0 });
   const double leanBefore = worstOffAxis(s, a, b, 20.0, 48.0);
-  const auto r = RawSkeletonRefinement::apply(s, SectionForeground::of(mask), kUnit, 0.0);
+  const auto r = RawSkeletonRefinement::apply(s, SectionForeground::of(scene.mask), kUnit, 0.0);
   const double leanAfter = worstOffAxis(s, a, b, 20.0, 48.0);
   std::cout << "tube under a plate: re-traced " << r.tracked.stretchesTracked << ", cut "
             << r.tracked.stretchesCut << ", paths removed " << r.pruned.pathsRemoved
