@@ -18,6 +18,8 @@ Charts (each captioned with the machine, the commit and quick/full mode):
   stability_maps.png               stable/unstable over coupler k_c, LDGF lambda, force
                                    interpolation bound against loop rate, defaults marked
   render_fps.png                   agent frames/s cached vs full re-render over volume sizes
+  client_server_scaling.png        peak memory per rank, centerline time, bytes to the client and
+                                   the client's haptic p99 against the pvserver rank count
   raw_centerline.png               raw angiograms from one seed: recall per radius class and
                                    precision (worst phantom case), VesselCenterline vs
                                    scikit-image, every case as dots; times beside
@@ -351,6 +353,40 @@ def chart_render(out, results):
     save(fig, out, "render_fps.png", results)
 
 
+def chart_client_server_scaling(out, results):
+    """Issue 19 item 4: per volume size, against the rank count: the largest rank's peak memory,
+    the centerline's time in the pipeline, the bytes sent to the client, the client's haptic p99."""
+    raw = load(out, "scaling")
+    if not raw:
+        return
+    ranks = raw["ranks"]
+    panels = (("peak_rss_mib_max", "largest rank's peak memory (MiB)"),
+              ("centerline_s", "VesselCenterline in the pipeline (s)"),
+              ("bytes_to_client", "skeleton sent to the client (bytes)"),
+              ("haptic.render.period_error_p99_us", "client haptic p99 period error\n"
+               "while the server renders (us)"))
+    fig, axes = plt.subplots(1, 4, figsize=(15, 4))
+    for ax, (key, label) in zip(axes, panels):
+        for size in raw["sizes"]:
+            values = [raw.get("%s.r%d" % (size, n), {}).get(key, float("nan")) for n in ranks]
+            ax.plot(ranks, values, "o-", label=size)
+        if key == "haptic.render.period_error_p99_us":
+            for size in raw["sizes"]:
+                idle = [raw.get("%s.r%d" % (size, n), {}).get("haptic.idle.period_error_p99_us",
+                                                              float("nan")) for n in ranks]
+                ax.plot(ranks, idle, "x:", color="0.5")
+            ax.plot([], [], "x:", color="0.5", label="idle (no rendering)")
+        ax.set_xticks(ranks)
+        ax.set_xlabel("pvserver ranks (2 cores: 4 oversubscribe)")
+        ax.set_ylabel(label, fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7)
+    axes[3].legend(fontsize=7)
+    fig.suptitle("client/server: the volume on N ranks, the haptic session in the client",
+                 fontsize=10)
+    save(fig, out, "client_server_scaling.png", results)
+
+
 def chart_raw_centerline(out, results):
     raw = load(out, "rawcenterline")
     if not raw:
@@ -467,7 +503,8 @@ def main():
         print("charts: no results: %s" % e, file=sys.stderr)
         return 1
     for chart in (chart_centerline_accuracy, chart_centerline_scaling, chart_force, chart_tracer,
-                  chart_surface, chart_loop, chart_stability, chart_render, chart_raw_centerline, summary):
+                  chart_surface, chart_loop, chart_stability, chart_render, chart_raw_centerline,
+                  chart_client_server_scaling, summary):
         try:
             chart(out, results)
         except Exception as e:  # noqa: BLE001  (one broken chart must not hide the others)

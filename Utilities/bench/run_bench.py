@@ -3,7 +3,7 @@
 plus the raw data of each section (<out>/raw/*.json) for the charts. Called by Utilities/bench.sh.
 
     /usr/bin/python3 Utilities/bench/run_bench.py --build BUILD --out OUT [--quick]
-        [--only centerline rawcenterline haptic force stability render gui]
+        [--only centerline rawcenterline haptic force stability render gui scaling]
 
 Sections (each in its own processes; a failed section is reported and its keys stay missing, so
 check_results.py fails):
@@ -21,6 +21,9 @@ check_results.py fails):
   render      Testing/Benchmarks/agent_framerate.py under pvpython and Xvfb.
   gui         Testing/ParaView/gui/bench_camera_drag.py: the haptic loop's period error while the
               camera is dragged in the real ParaView GUI under Xvfb, against an idle phase.
+  scaling     the volume on a 1-, 2- and 4-rank pvserver, the session in the client
+              (Utilities/bench/scaling_bench.py): time per stage, peak memory per rank, bytes to
+              the client, the client's haptic p99 while the server renders.
 --quick: smaller volumes, fewer points and shorter runs; every key is still written (the
 centerline.helix384/tree384 keys then come from the largest quick size) and meta.quick is 1.
 """
@@ -44,7 +47,8 @@ sys.path.insert(0, os.path.join(ROOT, "Utilities"))
 sys.path.insert(0, HERE)
 import skeleton_benchmark as sb  # noqa: E402  (accuracy, VTP reader, aorta frame, skimage child)
 
-SECTIONS = ("centerline", "rawcenterline", "haptic", "force", "stability", "render", "gui")
+SECTIONS = ("centerline", "rawcenterline", "haptic", "force", "stability", "render", "gui",
+            "scaling")
 
 
 def log(*words):
@@ -336,6 +340,13 @@ def section_gui(build, quick, tmp):
     log("gui camera drag:\n" + text.rstrip())
     data = json.load(open(out))
     return {k: v for k, v in data.items() if isinstance(v, (int, float))}, data
+
+
+def section_scaling(build, quick, tmp):
+    """Client/server: the volume on 1, 2, 4 pvserver ranks, the session in the client (issue 19)."""
+    import scaling_bench  # noqa: E402  (beside this file)
+
+    return scaling_bench.run(build, quick, tmp, log)
 
 
 # ------------------------------------------------------------------------------------------------

@@ -1,0 +1,204 @@
+"""Client/server scaling run (issue 19, item 4): one volume on an N-rank pvserver, measured from the
+client. Run by Utilities/bench/scaling_bench.py (section "scaling" of Utilities/bench/run_bench.py)
+under Testing/Utilities/vtouch-xvfb-run, or by hand:
+
+    Testing/Utilities/vtouch-xvfb-run pvpython Testing/Benchmarks/scaling_client.py \
+        --plugin build/lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so \
+        --volume vessels.nrrd --ranks 2 --lower 500 --upper 65535 --json out.json
+
+Starts `mpiexec -np N pvserver` on 127.0.0.1 (Testing/ParaView/clientserver/vtouch_pvserver.py:
+free port, every wait timed out, the process group ended), connects, loads the plugin on both
+sides, and measures what the user waits for, in order:
+  read_s            the reader's UpdatePipeline (each rank reads its piece);
+  centerline_s      VesselCenterline's UpdatePipeline, the reader already updated (the filter may
+                    ask for more than the reader's piece, ghost layers: that re-read is in here);
+  stage_<name>_s    every "<Name>Seconds" array of the filter's field data (the filter's own stage
+                    times, as rank 0 reports them);
+  deliver_s         binding the client's session: the skeleton appended on rank 0 and moved to the
+                    client (vesseltouch/delivery.py);
+  bytes_to_client   the delivered skeleton, marshalled as ParaView sends it
+                    (vtkCommunicator::MarshalDataObject);
+  peak_rss_mib.rank<r>, peak_rss_mib_max   each rank's VmHWM (/proc/<pid>/status) at the end,
+                    baseline_rss_mib.rank<r> each rank's VmRSS once connected with the plugin loaded;
+  client_peak_rss_mib;
+  haptic.<phase>.<statistic>   the client's real-time loop (simulated device, the hand sweeping the
+                    first path) for --seconds per phase: "idle" (nothing else) and "render" (the
+                    server renders the MIP of the volume, remote rendering, the camera turning
+                    every frame), each phase on a restarted session; frames_rendered.
+Writes one flat JSON object; exits non-zero if a step failed (the error is in the JSON as "error").
+"""
+
+import argparse
+import json
+import os
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "ParaView", "clientserver"))
+from vtouch_pvserver import ParallelServer, wait_until  # noqa: E402
+
+from paraview import servermanager as sm  # noqa: E402
+from paraview import simple  # noqa: E402
+
+
+def rank_processes(session_leader):
+    """{mpi rank: pid} of the pvserver processes started under `session_leader` (mpiexec)."""
+    ranks = {}
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open("/proc/%s/stat" % entry) as f:
+                stat = f.read()
+            comm = stat[stat.index("(") + 1:stat.rindex(")")]
+            fields = stat[stat.rindex(")") + 2:].split()
+            session = int(fields[3])
+            if comm != "pvserver" or session != session_leader:
+                continue
+            with open("/proc/%s/environ" % entry, "rb") as f:
+                env = dict(item.split(b"=", 1) for item in f.read().split(b"\0") if b"=" in item)
+            ranks[int(env.get(b"OMPI_COMM_WORLD_RANK", b"0"))] = int(entry)
+        except (OSError, ValueError):
+            continue  # a process that ended meanwhile
+    return ranks
+
+
+def status_mib(pid, key):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith(key + ":"):
+                return int(line.split()[1]) / 1024.0
+    return float("nan")
+
+
+def marshalled_bytes(data):
+    from vtkmodules.vtkCommonCore import vtkCharArray
+    from vtkmodules.vtkParallelCore import vtkCommunicator
+    buffer = vtkCharArray()
+    vtkCommunicator.MarshalDataObject(data, buffer)
+    return int(buffer.GetNumberOfTuples() * buffer.GetNumberOfComponents())
+
+
+def haptic_phase(session, seconds, render_view=None):
+    """One phase on a restarted session: its loop statistics start at zero."""
+    session.Stop()
+    session.SetHandSweep(path=0, speed_mm_per_s=40.0)
+    session.Start()
+    frames = 0
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        if render_view is None:
+            time.sleep(0.05)
+            continue
+        camera = simple.GetActiveCamera()
+        camera.Azimuth(3.0)
+        simple.Render(render_view)
+        frames += 1
+    stats = session.GetStatistics()
+    status = session.GetStatus()
+    session.Stop()
+    out = {k: float(v) for k, v in stats.items()}
+    out["fault"] = int(status["fault"])
+    return out, frames
+
+
+def measure(args, server, result):
+    plugin = os.path.abspath(args.plugin)
+    simple.LoadPlugin(plugin, remote=True)
+    simple.LoadPlugin(plugin, remote=False)
+    import vesseltouch  # the plugin's Python package: importable once the plugin is loaded
+    result["ranks"] = sm.ActiveConnection.GetNumberOfDataPartitions()
+    pids = wait_until(lambda: rank_processes(server.process.pid), 10.0)
+    result["rank_pids_found"] = len(pids)
+    for rank, pid in pids.items():
+        result["baseline_rss_mib.rank%d" % rank] = status_mib(pid, "VmRSS")
+
+    reader = simple.OpenDataFile(args.volume)
+    t = time.perf_counter()
+    reader.UpdatePipeline()
+    result["read_s"] = time.perf_counter() - t
+    info = reader.GetDataInformation()
+    result["voxels"] = info.GetNumberOfPoints()
+
+    centerline = simple.VesselCenterline(Input=reader, AutomaticIntensityRange=0,
+                                         LowerThreshold=args.lower, UpperThreshold=args.upper)
+    t = time.perf_counter()
+    centerline.UpdatePipeline()
+    result["centerline_s"] = time.perf_counter() - t
+
+    session = vesseltouch.logic()
+    t = time.perf_counter()
+    session.Bind(centerline)
+    result["deliver_s"] = time.perf_counter() - t
+    delivered = session._delivery.client_copy()
+    result["skeleton_points"] = delivered.GetNumberOfPoints()
+    result["skeleton_paths"] = delivered.GetNumberOfLines()
+    result["bytes_to_client"] = marshalled_bytes(delivered)
+    fd = delivered.GetFieldData()
+    for i in range(fd.GetNumberOfArrays()):
+        name = fd.GetArrayName(i) or ""
+        array = fd.GetArray(i)
+        if name.endswith("Seconds") and array is not None and array.GetNumberOfTuples():
+            stage = name[:-len("Seconds")]
+            result["stage_%s_s" % stage[0].lower() + stage[1:]] = float(array.GetValue(0))
+    message = fd.GetAbstractArray("ExtractionMessage")
+    if message is not None and message.GetNumberOfValues() and message.GetValue(0):
+        result["extraction_message"] = message.GetValue(0)
+
+    session.SetDevice("simulated")
+    idle, _ = haptic_phase(session, args.seconds)
+    view = simple.CreateView("RenderView")
+    view.ViewSize = [args.view_px, args.view_px]
+    view.RemoteRenderThreshold = 0.0  # rendered and composited on the server, the image sent
+    view.OrientationAxesVisibility = 0
+    vesseltouch.ShowAsMIP(reader, view)
+    view.ResetCamera()
+    t = time.perf_counter()
+    simple.Render(view)
+    result["first_frame_s"] = time.perf_counter() - t
+    render, frames = haptic_phase(session, args.seconds, view)
+    result["frames_rendered"] = frames
+    for phase, stats in (("idle", idle), ("render", render)):
+        for key, value in stats.items():
+            result["haptic.%s.%s" % (phase, key)] = value
+
+    for rank, pid in pids.items():
+        result["peak_rss_mib.rank%d" % rank] = status_mib(pid, "VmHWM")
+    peaks = [result["peak_rss_mib.rank%d" % r] for r in pids]
+    result["peak_rss_mib_max"] = max(peaks) if peaks else float("nan")
+    result["client_peak_rss_mib"] = status_mib(os.getpid(), "VmHWM")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--plugin", required=True)
+    parser.add_argument("--volume", required=True)
+    parser.add_argument("--ranks", type=int, default=2)
+    parser.add_argument("--lower", type=float, default=500.0)
+    parser.add_argument("--upper", type=float, default=65535.0)
+    parser.add_argument("--seconds", type=float, default=3.0, help="per haptic phase")
+    parser.add_argument("--view-px", type=int, default=400)
+    parser.add_argument("--json", required=True)
+    args = parser.parse_args()
+    result = {"requested_ranks": args.ranks}
+    server = ParallelServer(ranks=args.ranks, start_timeout_s=180.0)
+    failed = False
+    try:
+        server.start()
+        simple.Connect("127.0.0.1", server.port)
+        measure(args, server, result)
+        simple.Disconnect()
+    except Exception as e:  # noqa: BLE001 - written into the result, the run reported failed
+        result["error"] = "%s: %s" % (type(e).__name__, e)
+        result["server_output"] = server.output()[-4000:]
+        failed = True
+    finally:
+        server.stop()
+    with open(args.json, "w") as f:
+        json.dump(result, f, indent=1, sort_keys=True)
+    print(json.dumps({k: v for k, v in result.items() if k != "server_output"}, sort_keys=True))
+    sys.exit(1 if failed else 0)
+
+
+main()
