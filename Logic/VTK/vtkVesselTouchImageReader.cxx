@@ -1,6 +1,7 @@
 #include "vtkVesselTouchImageReader.h"
 
 #include "vtouchVolumeIO.h"
+#include "vtouchVoxelValueRange.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -8,6 +9,7 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationInformationVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -284,6 +286,7 @@ int vtkVesselTouchImageReader::RequestData(vtkInformation*,
     vtkErrorMacro("VesselTouch reader: " << e.what() << ". The output is empty.");
     return 1;
   }
+  CacheValueRange(scalars, header.voxelType);
   output->SetExtent(extent);
   output->SetSpacing(g.spacing_mm.data());
   output->SetOrigin(g.origin_mm.data());
@@ -319,6 +322,32 @@ void vtkVesselTouchImageReader::MarkGhostLayers(vtkInformation* outInfo, vtkImag
     vtkExtentTranslator::BLOCK_MODE,
     0);
   output->GenerateGhostArray(owned);
+}
+
+void vtkVesselTouchImageReader::CacheValueRange(vtkDataArray* scalars, vtouch::VoxelType type)
+{
+  // VTK keeps an array's range per component in its information (PER_COMPONENT for GetRange,
+  // PER_FINITE_COMPONENT for GetFiniteRange), valid while the array is not modified after it:
+  // ParaView's data information and colour maps then read it instead of scanning the voxels with
+  // VTK's slow generic loop (vtouchVoxelValueRange.h says how slow).
+  const vtouch::VoxelValueRange r = vtouch::computeVoxelValueRange(
+    scalars->GetVoidPointer(0), type, static_cast<std::size_t>(scalars->GetNumberOfTuples()));
+  const auto cache = [scalars](vtkInformationInformationVectorKey* key, double lo, double hi)
+  {
+    vtkNew<vtkInformationVector> perComponent;
+    perComponent->SetNumberOfInformationObjects(1);
+    const double range[2] = { lo, hi };
+    perComponent->GetInformationObject(0)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
+    scalars->GetInformation()->Set(key, perComponent);
+  };
+  if (!r.empty())
+  {
+    cache(vtkAbstractArray::PER_COMPONENT(), r.min, r.max);
+  }
+  if (!r.finiteEmpty())
+  {
+    cache(vtkAbstractArray::PER_FINITE_COMPONENT(), r.finiteMin, r.finiteMax);
+  }
 }
 
 void vtkVesselTouchImageReader::AddReadStatistics(vtkImageData* output)

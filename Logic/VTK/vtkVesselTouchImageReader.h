@@ -24,12 +24,14 @@
 #include <memory> // for std::unique_ptr
 #include <string> // for std::string
 
+class vtkDataArray;
 class vtkImageData;
 class vtkStringArray;
 
 namespace vtouch
 {
 class VolumeSource;
+enum class VoxelType;
 }
 
 class VTKVESSELTOUCHLOGIC_EXPORT vtkVesselTouchImageReader : public vtkImageAlgorithm
@@ -93,6 +95,9 @@ private:
   /// Marks the ghost layers a downstream filter asked for (vtkGhostType) when the piece carries
   /// them.
   void MarkGhostLayers(vtkInformation* outInfo, vtkImageData* output);
+  /// Computes the read voxels' range and finite range and stores them in VTK's range cache of
+  /// `scalars` (vtouchVoxelValueRange.h).
+  void CacheValueRange(vtkDataArray* scalars, vtouch::VoxelType type);
   /// The last read's statistics as field data: ReaderVoxelBytesRead, ReaderFilesRead,
   /// ReaderReadsPiecesAlone (one value each).
   void AddReadStatistics(vtkImageData* output);

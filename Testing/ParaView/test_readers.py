@@ -32,7 +32,7 @@ import numpy as np
 
 from paraview import servermanager as sm
 from vtouch_testing import test_volume_writer
-from paraview.simple import LoadPlugin, OpenDataFile, XMLPolyDataReader
+from paraview.simple import Delete, LoadPlugin, OpenDataFile, XMLPolyDataReader
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
@@ -236,6 +236,54 @@ def test_itk_written_files(tmp):
               "%s: VTK type %s, expected %d" % (pixel, scalars and scalars.GetDataType(), vtk_type))
 
 
+def test_value_range_cache(tmp):
+    """The reader computes each piece's range and finite range as it reads and hands them to VTK's
+    range cache (vtkVesselTouchImageReader::CacheValueRange): the ranges ParaView then reads are
+    those of the voxels, and come from the cache, not from VTK's slow scan."""
+    from vtkmodules.vtkCommonCore import vtkAbstractArray
+    name = "range.nrrd"
+    path = os.path.join(tmp, name)
+    write_nrrd(path, "left-posterior-superior")
+    reader, _, _ = open_volume(path)
+    algorithm = reader.GetClientSideObject()
+    algorithm.Modified()
+    algorithm.Update()  # a fresh read that nothing has asked a range of yet
+    scalars = algorithm.GetOutputDataObject(0).GetPointData().GetScalars()
+    info = scalars.GetInformation()
+    check(info.Has(vtkAbstractArray.PER_COMPONENT()) and
+          info.Has(vtkAbstractArray.PER_FINITE_COMPONENT()),
+          "%s: the reader did not cache the range and the finite range" % name)
+    want = volume_array()
+    check(tuple(scalars.GetRange(0)) == (float(want.min()), float(want.max())),
+          "%s: range %s, the voxels span %s..%s" % (name, scalars.GetRange(0), want.min(), want.max()))
+    check(tuple(scalars.GetFiniteRange(0)) == (float(want.min()), float(want.max())),
+          "%s: finite range %s" % (name, scalars.GetFiniteRange(0)))
+    data_range = reader.GetDataInformation().GetPointDataInformation().GetArrayInformation(
+        scalars.GetName()).GetComponentRange(0)
+    check(tuple(data_range) == (float(want.min()), float(want.max())),
+          "%s: ParaView's data information range %s" % (name, tuple(data_range)))
+    # Floating voxels: NaN never counts, infinities only in the plain range.
+    floats = want.astype("<f4")
+    floats[0, 0, 0] = np.nan
+    floats[1, 1, 1] = np.inf
+    floats[2, 2, 2] = -1000.25  # the smallest, off the integer grid
+    fpath = os.path.join(tmp, "range-float.nrrd")
+    with open(fpath, "wb") as f:
+        f.write(("NRRD0004\ntype: float\ndimension: 3\nsizes: %d %d %d\nencoding: raw\n"
+                 "endian: little\n\n" % SIZE).encode("ascii"))
+        f.write(floats.tobytes())
+    freader, _, _ = open_volume(fpath)
+    fscalars = freader.GetClientSideObject().GetOutputDataObject(0).GetPointData().GetScalars()
+    finite = floats[np.isfinite(floats)]
+    check(tuple(fscalars.GetRange(0)) == (float(finite.min()), float("inf")),
+          "float volume: range %s, expected (%s, inf)" % (fscalars.GetRange(0), finite.min()))
+    check(tuple(fscalars.GetFiniteRange(0)) == (float(finite.min()), float(finite.max())),
+          "float volume: finite range %s, expected (%s, %s)"
+          % (fscalars.GetFiniteRange(0), finite.min(), finite.max()))
+    Delete(freader)
+    Delete(reader)
+
+
 def test_dicom_series(tmp):
     folder = os.path.join(tmp, "dicom")
     itk_write("dicom", folder, "1.2.826.0.1.3680043.2.1125.9.1", "oblique", -1, "IM", 6, 5, 4,
@@ -368,6 +416,7 @@ def main():
     try:
         test_hand_written_files(tmp)
         test_itk_written_files(tmp)
+        test_value_range_cache(tmp)
         test_dicom_series(tmp)
         test_vmtk_aorta()
         test_bad_input(tmp)
