@@ -88,20 +88,23 @@ void HapticPipeline::applyParameters(const HapticParameters& p)
   this->Idle.dwell_s = p.idleDwell_s;
   this->Idle.ramp_s = p.idleRamp_s;
   this->Trace.deadBand_px = std::max(0.0, p.tracerDeadBand_px);
-  this->Contact.dwell_s = std::isfinite(p.contactDwell_s) ? std::max(0.0, p.contactDwell_s) : 0.05;
+  // A non-finite value (the facade validates against the table, a raw struct may still carry one)
+  // falls back to the table's default, not to a second copy of it here.
+  static const HapticParameters kDefaults{};
+  const auto finiteOr = [](double value, double fallback)
+  { return std::isfinite(value) ? value : fallback; };
+  this->Contact.dwell_s = std::max(0.0, finiteOr(p.contactDwell_s, kDefaults.contactDwell_s));
   this->Contact.approachAtStart = p.contactApproachAtStart;
-  this->Trace.directionHysteresis = std::isfinite(p.tracerDirectionHysteresis)
-                                      ? std::clamp(p.tracerDirectionHysteresis, 0.0, 1.0)
-                                      : 0.1;
-  this->Trace.movementThreshold_px = std::isfinite(p.tracerMovementThreshold_px)
-                                       ? std::max(0.0, p.tracerMovementThreshold_px)
-                                       : 0.01;
+  this->Trace.directionHysteresis = std::clamp(
+    finiteOr(p.tracerDirectionHysteresis, kDefaults.tracerDirectionHysteresis), 0.0, 1.0);
+  this->Trace.movementThreshold_px = std::max(
+    0.0, finiteOr(p.tracerMovementThreshold_px, kDefaults.tracerMovementThreshold_px));
   this->Trace.foldLookAhead_px =
-    std::isfinite(p.tracerFoldLookAhead_px) ? std::max(0.0, p.tracerFoldLookAhead_px) : 3.0;
+    std::max(0.0, finiteOr(p.tracerFoldLookAhead_px, kDefaults.tracerFoldLookAhead_px));
   this->Trace.junctionWindow_px =
-    std::isfinite(p.tracerJunctionWindow_px) ? std::max(0.0, p.tracerJunctionWindow_px) : 24.0;
+    std::max(0.0, finiteOr(p.tracerJunctionWindow_px, kDefaults.tracerJunctionWindow_px));
   this->Trace.junctionMargin_px =
-    std::isfinite(p.tracerJunctionMargin_px) ? std::max(0.0, p.tracerJunctionMargin_px) : 1.0;
+    std::max(0.0, finiteOr(p.tracerJunctionMargin_px, kDefaults.tracerJunctionMargin_px));
 }
 
 Vec2 HapticPipeline::renderLaws(const ForceInput& fin,

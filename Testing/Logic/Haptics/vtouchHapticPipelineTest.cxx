@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 namespace vtouch
@@ -581,6 +583,37 @@ TEST(HapticPipeline, ViewChangeWhileTracingKeepsAgentAndBoundsForceStep)
   EXPECT_NEAR(st.point, point, 1);
   EXPECT_GT((st.force_N - before).norm(), 0.3); // the slope did change a lot ...
   EXPECT_LE(worst, 0.1 + 1e-12);                // ... but by at most 0.1 N per 1 ms tick
+}
+
+TEST(HapticPipeline, NonFiniteTracerSettingsFallBackToTheParameterTablesDefaults)
+{
+  // A raw HapticParameters may carry NaN or infinity (the facade validates; scripts built on the
+  // struct do not): each tracer setting then takes the table's default, never a stale or made-up
+  // value, and the tick stays finite.
+  PipelineRig rig;
+  rig.view = buildView(straightLine({ -20, 0, 0 }, { 20, 0, 20 }, 0.25), topCamera({ 0, 0, 10 }));
+  const HapticParameters defaults{};
+  rig.params.tracerDirectionHysteresis = std::numeric_limits<double>::quiet_NaN();
+  rig.params.tracerMovementThreshold_px = std::numeric_limits<double>::infinity();
+  rig.params.tracerFoldLookAhead_px = -std::numeric_limits<double>::infinity();
+  rig.params.tracerJunctionWindow_px = std::numeric_limits<double>::quiet_NaN();
+  rig.params.tracerJunctionMargin_px = std::numeric_limits<double>::quiet_NaN();
+  rig.params.contactDwell_s = std::numeric_limits<double>::quiet_NaN();
+  // Start from values that differ from the defaults, so a setting left untouched shows.
+  rig.pipeline.tracer().directionHysteresis = 0.9;
+  rig.pipeline.tracer().movementThreshold_px = 7.0;
+  rig.pipeline.tracer().foldLookAhead_px = 50.0;
+  rig.pipeline.tracer().junctionWindow_px = 400.0;
+  rig.pipeline.tracer().junctionMargin_px = 15.0;
+  const AgentState s = rig.step();
+  const Tracer& t = rig.pipeline.tracer();
+  EXPECT_EQ(t.directionHysteresis, defaults.tracerDirectionHysteresis);
+  EXPECT_EQ(t.movementThreshold_px, defaults.tracerMovementThreshold_px);
+  EXPECT_EQ(t.foldLookAhead_px, defaults.tracerFoldLookAhead_px);
+  EXPECT_EQ(t.junctionWindow_px, defaults.tracerJunctionWindow_px);
+  EXPECT_EQ(t.junctionMargin_px, defaults.tracerJunctionMargin_px);
+  EXPECT_EQ(rig.pipeline.contactGate().dwell_s, defaults.contactDwell_s);
+  EXPECT_TRUE(std::isfinite(s.force_N.x) && std::isfinite(s.force_N.y));
 }
 
 } // namespace
