@@ -508,7 +508,7 @@ bool vtkVesselTouchHapticSession::Start()
   if (in.ConnectionFaultLatched)
   {
     this->Fail("Start: " + in.ConnectionMessage +
-      " (ClearFault() first to trace on the skeleton kept in this process)");
+               " (ClearFault() first to trace on the skeleton kept in this process)");
     return false;
   }
   this->ApplyProperties();

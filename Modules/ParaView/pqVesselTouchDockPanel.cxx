@@ -622,11 +622,11 @@ void pqVesselTouchDockPanel::onConnectionLost(const QString& server)
 {
   pqInternals& in = *this->Internals;
   in.Binding->stop(); // zero force first: the rest may take a while
-  const QString file = QDir(QDir::tempPath())
-                         .filePath(QStringLiteral("vesseltouch-skeleton-%1-%2.vtp")
-                                     .arg(QCoreApplication::applicationPid())
-                                     .arg(QDateTime::currentDateTime().toString(
-                                       QStringLiteral("yyyyMMdd-hhmmss"))));
+  const QString file =
+    QDir(QDir::tempPath())
+      .filePath(QStringLiteral("vesseltouch-skeleton-%1-%2.vtp")
+                  .arg(QCoreApplication::applicationPid())
+                  .arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss"))));
   const bool saved = in.Binding->saveSkeleton(file);
   const QString message =
     tr("The connection to the pvserver %1 was lost (the server died or the network went down): "

@@ -6,18 +6,29 @@
 //   when the active server changes and when plugins load (pqPluginManager::pluginsUpdated).
 // - The pvserver lost: connectionLost() the moment pqServer says so (serverSideDisconnected:
 //   pqServer watches its socket for server notifications, and vtkSMSessionClient turns the
-//   socket's error into vtkPVSessionBase::ConnectionLost). It is connected to each server as it
-//   is added (pqServerManagerModel::preServerAdded), before ParaView's pqCrashRecoveryBehavior,
-//   which on the same signal offers to save the state and then ends the application (_exit): the
-//   panel zeroes the force and saves the skeleton first. The haptic thread never touches the
-//   network; detection is the GUI's.
+//   socket's error into vtkPVSessionBase::ConnectionLost). Measured here: pqServer learns it at
+//   its next heartbeat (a send that fails), tens of seconds later, and ParaView's
+//   pqCrashRecoveryBehavior answers with a modal dialog, then ends the application (_exit). So
+//   this class polls the data-server socket for the peer's hang-up on the main thread every
+//   20 ms (POLLRDHUP, reading nothing: ParaView's messages are left alone; the period is a
+//   project rule, well under a reaction time), and observes the session's ConnectionLost event at
+//   a higher priority than pqServer's: the panel zeroes the force and saves the skeleton before
+//   ParaView's dialog. The
+//   haptic thread never touches the network; detection is the GUI's.
 #ifndef pqVesselTouchServerCheck_h
 #define pqVesselTouchServerCheck_h
 
 #include <QObject>
+#include <QPointer>
 #include <QString>
 
+#include "vtkWeakPointer.h"
+
+#include <vector>
+
 class pqServer;
+class QTimer;
+class vtkObject;
 
 class pqVesselTouchServerCheck : public QObject
 {
@@ -43,8 +54,20 @@ Q_SIGNALS:
 private Q_SLOTS:
   void recheck();
   void watch(pqServer* server);
+  void pollSockets();
 
 private:
+  void onSessionConnectionLost(vtkObject* session, unsigned long event, void* data);
+
+  struct Watched
+  {
+    QPointer<pqServer> Server;
+    vtkWeakPointer<vtkObject> Session;
+    unsigned long Tag = 0;
+    int Socket = -1; ///< the client's socket to the data server (-1: none, or lost)
+  };
+  std::vector<Watched> Sessions;
+  QTimer* Poll = nullptr;
   QString Problem;
   Q_DISABLE_COPY(pqVesselTouchServerCheck)
 };

@@ -269,8 +269,8 @@ bool pqVesselTouchSessionBinding::saveSkeleton(const QString& fileName) const
   vtkSMProxy* session = this->proxy();
   auto* algorithm = session ? vtkAlgorithm::SafeDownCast(session->GetClientSideObject()) : nullptr;
   vtkPolyData* skeleton = algorithm && algorithm->GetNumberOfInputConnections(0) > 0
-    ? vtkPolyData::SafeDownCast(algorithm->GetInputDataObject(0, 0))
-    : nullptr;
+                            ? vtkPolyData::SafeDownCast(algorithm->GetInputDataObject(0, 0))
+                            : nullptr;
   if (!skeleton || skeleton->GetNumberOfPoints() == 0)
   {
     return false;

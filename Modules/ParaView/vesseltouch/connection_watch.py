@@ -146,11 +146,27 @@ class ConnectionWatch:
             self._thread.join(timeout=1.0)
 
 
+#: Set by the VesselTouch panel in the GUI, where pqServer watches the connection and the panel
+#: reports the loss on the main thread (a thread of ours would call into the server manager
+#: while Qt's main thread uses it: no interpreter lock orders those).
+GUI_WATCHES_ENV = "VESSELTOUCH_GUI_WATCHES_CONNECTION"
+
+
+def _process_env(name):
+    """The variable as the process has it now (os.environ is a copy taken when Python started,
+    possibly before the panel set it)."""
+    import ctypes
+    getenv = ctypes.CDLL(None).getenv
+    getenv.restype = ctypes.c_char_p
+    return getenv(name.encode())
+
+
 def watch(listener, connection=None):
     """Adds `listener` to the watch of `connection` (the active one by default), started once
-    per connection. Returns the watch, or None built in (nothing to lose)."""
+    per connection. Returns the watch, or None built in (nothing to lose) and in the GUI (the
+    panel watches there)."""
     connection = connection or servermanager.ActiveConnection
-    if connection is None or not connection.IsRemote():
+    if connection is None or not connection.IsRemote() or _process_env(GUI_WATCHES_ENV):
         return None
     existing = _WATCHES.get(connection.ID)
     if existing is None or existing._stop.is_set():
