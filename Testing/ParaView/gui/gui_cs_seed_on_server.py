@@ -4,7 +4,7 @@
 The real ParaView starts on an empty scene; a 2-rank pvserver starts on 127.0.0.1 with a free port
 (vtouch_pvserver.ParallelServer). The GUI's Python saves a tree phantom as .vti (built in), connects,
 loads the plugin on both sides and opens the .vti on the server (read in pieces by the ranks), shown as a
-MIP rendered on the server. Then, as a user would: Pick seed, a click on the brightest pixel of the
+MIP rendered on the server (remote rendering forced). Then, as a user would: Pick seed, a click on the brightest pixel of the
 MIP (xdotool through the real X server). None of the voxels are in the client, so the seed picker
 probes the click's ray on the server (pqVesselTouchRemoteRayProbe: ParaView's ProbeLine on the
 ranks, the samples moved to the client) and takes the brightest sample's voxel:
@@ -48,6 +48,7 @@ LoadPlugin(%(plugin)r, remote=True)
 LoadPlugin(%(plugin)r, remote=False)
 volume = XMLImageDataReader(registrationName="Volume", FileName=[%(vti)r])
 volume.UpdatePipeline()
+GetSettingsProxy("RenderViewSettings").RemoteRenderThreshold = 0.0  # render on the server
 view = GetActiveViewOrCreate("RenderView")
 vesseltouch.ShowAsMIP(volume, view)
 view.OrientationAxesVisibility = 0
@@ -55,11 +56,30 @@ SetActiveSource(volume)
 Render(view)
 """
 
+REMOTE = """
+from paraview.simple import *
+view = GetActiveView()
+Render(view)
+with open(%(path)r, "w") as f:
+    f.write(str(int(view.GetClientSideObject().GetUseDistributedRenderingForRender())))
+"""
+
 
 def brightest(png):
     """The brightest pixel of the view capture (a vessel of the MIP), as (row, column)."""
     grey = numpy.asarray(Image.open(png).convert("RGB")).astype(int).sum(axis=2)
     return numpy.unravel_index(numpy.argmax(grey), grey.shape), grey.shape
+
+
+def agent_pixels(png):
+    """Strongly coloured pixels that are not the centerlines' orange or the seed's cyan: the
+    agent's cone and its force arrow (as gui_extract_workflow counts them)."""
+    rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int)
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    orange = (r > 170) & (g > 80) & (g < 200) & (b < 90) & (r - g > 40)
+    cyan = (r < 60) & (g > 60) & (b > 60) & (numpy.abs(g - b) < 40)
+    saturated = rgb.max(axis=2) - rgb.min(axis=2) > 80
+    return int(numpy.count_nonzero(saturated & ~orange & ~cyan))
 
 
 def click_view(gui, pixel, image_shape):
@@ -92,6 +112,11 @@ def main():
         if not check(mip is not None, "the server's MIP is captured"):
             return
         pixel, shape = brightest(mip)
+        flag = os.path.join(folder, "distributed.txt")
+        gui.python(REMOTE % {"path": flag})
+        distributed = open(flag).read().strip() if os.path.exists(flag) else "?"
+        check(distributed == "1", "the MIP is rendered on the server ranks and composited "
+                                  "(distributed rendering: %s)" % distributed)
 
         gui.run("click", "pickSeedButton")
         click_view(gui, pixel, shape)
@@ -113,8 +138,28 @@ def main():
         text = gui.widget("extractMessage").get("text", "")
         print("extract: %r" % text)
         check("centerline path" in text, "Extract from that seed reports paths (%r)" % text)
-        gui.capture("after_extract.png")
+        after = gui.capture("after_extract.png")
         gui.screenshot(os.path.join(gui.work, "screen_after_extract.png"))
+
+        # Start in the client on the delivered skeleton: the agent over the server's MIP.
+        gui.run("click", "startButton")
+        check(gui.wait_until(lambda s: s["session"]["running"], seconds=20),
+              "Start runs the session in the client")
+        check(gui.wait_until(lambda s: s["actions"]["actionVesselTouchShowAgent"]["checked"]),
+              "the agent is drawn while the session runs")
+        traced = gui.wait_until(
+            lambda s: gui.widget("sessionStateLabel").get("text", "").startswith(
+                "Running: tracing"), seconds=30)
+        gui.python(REMOTE % {"path": flag})
+        distributed = open(flag).read().strip() if os.path.exists(flag) else "?"
+        check(distributed == "1", "still rendered on the server while tracing (%s)" % distributed)
+        cone = gui.capture("agent_over_remote_mip.png")
+        gui.screenshot(os.path.join(gui.work, "screen_tracing.png"))
+        count = agent_pixels(cone) if cone else -1
+        print("agent pixels while running: %d (after Extract: %d); traced: %s"
+              % (count, agent_pixels(after) if after else -1, traced))
+        check(count > 20, "the agent cone shows over the server's MIP (%d pixels)" % count)
+        gui.run("click", "stopButton")
     finally:
         gui.finish()
         code = server.stop()
