@@ -136,7 +136,7 @@ class ConnectionWatch:
             if listener is not None:
                 try:
                     listener(message)
-                except Exception as e:  # noqa: BLE001 - one listener's failure must not stop the rest
+                except Exception as e:  # noqa: BLE001 - one failure must not stop the rest
                     print("VesselTouch: a session could not take the fault: %s" % e,
                           file=sys.stderr, flush=True)
 

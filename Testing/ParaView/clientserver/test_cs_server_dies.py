@@ -124,7 +124,8 @@ def kill_mid_session(server, volume_path, folder):
     reader.SetFileName(saved)
     reader.Update()
     check(reader.GetOutput().GetNumberOfPoints() >= before["points"] > 0,
-          "SaveSkeleton wrote the kept skeleton (%d points)" % reader.GetOutput().GetNumberOfPoints())
+          "SaveSkeleton wrote the kept skeleton (%d points)"
+          % reader.GetOutput().GetNumberOfPoints())
     check(wait_until(lambda: not server.is_running(), 10.0), "the killed server's processes ended")
 
 

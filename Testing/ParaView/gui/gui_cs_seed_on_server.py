@@ -2,15 +2,19 @@
 2-rank pvserver resolves on the server, then Extract runs there.
 
 The real ParaView starts on an empty scene; a 2-rank pvserver starts on 127.0.0.1 with a free port
-(vtouch_pvserver.ParallelServer). The GUI's Python saves a tree phantom as .vti (built in), connects,
-loads the plugin on both sides and opens the .vti on the server (read in pieces by the ranks), shown as a
-MIP rendered on the server (remote rendering forced). Then, as a user would: Pick seed, a click on the brightest pixel of the
-MIP (xdotool through the real X server). None of the voxels are in the client, so the seed picker
-probes the click's ray on the server (pqVesselTouchRemoteRayProbe: ParaView's ProbeLine on the
-ranks, the samples moved to the client) and takes the brightest sample's voxel:
+(vtouch_pvserver.ParallelServer). The GUI's Python saves a tree phantom as .vti (built in),
+connects, loads the plugin on both sides and opens the .vti on the server (read in pieces by the
+ranks), shown as a MIP rendered on the server (remote rendering forced). Then, as a user would:
+Pick seed, a click on the brightest pixel of the MIP (xdotool through the real X server). None of
+the voxels are in the client, so the seed picker probes the click's ray on the server
+(pqVesselTouchRemoteRayProbe: ParaView's ProbeLine on the ranks, the samples moved to the client)
+and takes the brightest sample's voxel:
 - the seed is set (not "No seed"), its value lies in the vessel range the panel chose from the
   data (not background), and no "background" complaint;
-- Extract then runs VesselCenterline on the server from that seed and reports centerline paths.
+- Extract then runs VesselCenterline on the server from that seed and reports centerline paths;
+- Start runs the session in the client on the delivered skeleton: it traces, and the agent cone
+  shows over the MIP, which is still rendered on the server (RemoteRenderThreshold 0: the view
+  reports distributed rendering).
 Screenshots in <build>/Testing/gui-cs-seed. Runs with Debian's python3 under vtouch-xvfb-run.
 """
 
