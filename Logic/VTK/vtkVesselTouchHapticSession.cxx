@@ -84,6 +84,10 @@ public:
   double OfflineStart_s = 0.0;
   std::string LastError;
   std::string FaultText;
+  // After ReportConnectionLost: the held skeleton is used, never the input's producer again.
+  bool ConnectionLost = false;
+  bool ConnectionFaultLatched = false;
+  std::string ConnectionMessage;
   std::string SchedulerText;
   std::string DeviceName;
 };
@@ -349,13 +353,20 @@ vtkDataObject* vtkVesselTouchHapticSession::UpdateInput()
   {
     return nullptr;
   }
-  producer->Update(port);
+  if (!this->Internals->ConnectionLost)
+  {
+    producer->Update(port); // after a lost connection its data came from the dead server
+  }
   return producer->GetOutputDataObject(port);
 }
 
 bool vtkVesselTouchHapticSession::UpdateSkeleton(vtkDataObject* data)
 {
   vtkInternals& in = *this->Internals;
+  if (in.ConnectionLost && in.HasSkeleton)
+  {
+    return true; // the last skeleton delivered before the server was lost stays
+  }
   if (!data)
   {
     in.HasSkeleton = false;
@@ -494,6 +505,12 @@ bool vtkVesselTouchHapticSession::Start()
   {
     return true;
   }
+  if (in.ConnectionFaultLatched)
+  {
+    this->Fail("Start: " + in.ConnectionMessage +
+               " (ClearFault() first to trace on the skeleton kept in this process)");
+    return false;
+  }
   this->ApplyProperties();
   if (!this->UpdateSkeleton(this->UpdateInput()) || !in.HasCamera)
   {
@@ -614,6 +631,21 @@ void vtkVesselTouchHapticSession::ClearFault()
     device->clearFault();
   }
   this->Internals->Session.clearFault();
+  this->Internals->ConnectionFaultLatched = false;
+}
+
+void vtkVesselTouchHapticSession::ReportConnectionLost(const char* message)
+{
+  vtkInternals& in = *this->Internals;
+  this->Stop(); // zero force first, then the device closes: nothing depends on the server now
+  in.ConnectionLost = true;
+  in.ConnectionFaultLatched = true;
+  in.ConnectionMessage = message && *message ? message : "the connection to the server was lost";
+}
+
+int vtkVesselTouchHapticSession::GetConnectionLost()
+{
+  return this->Internals->ConnectionLost ? 1 : 0;
 }
 
 double* vtkVesselTouchHapticSession::GetStatistics()
@@ -765,7 +797,8 @@ int* vtkVesselTouchHapticSession::GetSessionStatus()
   vtkInternals& in = *this->Internals;
   const bool running = in.Session.isRunning();
   this->SessionStatus[0] = running ? 1 : 0;
-  this->SessionStatus[1] = static_cast<int>(in.Session.fault());
+  this->SessionStatus[1] =
+    in.ConnectionFaultLatched ? CONNECTION_LOST_FAULT : static_cast<int>(in.Session.fault());
   // The log vector belongs to the haptic thread while running.
   this->SessionStatus[2] = running ? -1 : static_cast<int>(in.Session.log().size());
   this->SessionStatus[3] = running ? -1 : static_cast<int>(in.Session.droppedLogEntries());
@@ -781,7 +814,9 @@ const char* vtkVesselTouchHapticSession::GetLastErrorMessage()
 
 const char* vtkVesselTouchHapticSession::GetFaultMessage()
 {
-  this->Internals->FaultText = vtouch::toString(this->Internals->Session.fault());
+  vtkInternals& in = *this->Internals;
+  in.FaultText = in.ConnectionFaultLatched ? in.ConnectionMessage
+                                           : std::string(vtouch::toString(in.Session.fault()));
   return this->Internals->FaultText.c_str();
 }
 

@@ -177,8 +177,23 @@ public:
   bool RunOffline(double duration_s, double rate_Hz);
   /// RunOffline(OfflineDuration, OfflineRate) (the proxy's button).
   bool RunOffline();
-  /// Clears a latched fault (forces re-engage softly).
+  /// Clears a latched fault (forces re-engage softly). After a lost connection the skeleton
+  /// stays the one held (the input is no longer updated); Start() is allowed again on it.
   void ClearFault();
+  /// The fault code GetSessionStatus() reports after ReportConnectionLost(), beside
+  /// vtouch::SessionFault's codes (1-3).
+  static constexpr int CONNECTION_LOST_FAULT = 4;
+  /// The client lost its pvserver (issue 19, item 6). Zero force at once: the loop stops (zero
+  /// force first) and the device closes, as Stop(); then the fault is latched with `message`
+  /// (GetFaultMessage; CONNECTION_LOST_FAULT in GetSessionStatus) until ClearFault(), Start()
+  /// refuses meanwhile. The skeleton the session holds is kept and never re-read from the input
+  /// (its producer lived on the lost server), so RunOffline() and, after ClearFault(), Start()
+  /// trace on it without touching the network. A control-thread call (the GUI's main thread, or
+  /// Python, whose calls into VTK hold the interpreter lock). The haptic thread never touches the
+  /// network: detection is the host's (pqServer's signal, vesseltouch.connection_watch).
+  void ReportConnectionLost(const char* message);
+  /// 1 after ReportConnectionLost() (the skeleton is held, the input detached), else 0.
+  int GetConnectionLost();
 
   // --- information ---
   /// nominal rate, achieved rate (Hz), ticks, overruns, skipped deadlines, period error p50, p99,

@@ -59,6 +59,7 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
   , Extraction(new pqVesselTouchCenterlineExtraction(this))
   , Preview(new pqVesselTouchRegionPreview(this->Extraction->overlay(), this))
   , PreviewToolTip(ui.previewButton->toolTip())
+  , ExtractToolTip(ui.extractButton->toolTip())
 {
   QObject::connect(this->Volumes,
     &pqVesselTouchVolumeChooser::currentVolumeChanged,
@@ -471,7 +472,7 @@ void pqVesselTouchCenterlineWorkflow::onVolumeChanged(pqPipelineSource* volume)
   }
   this->setDataRange(volume);
   this->Ui.extractProgress->setValue(0);
-  this->setExtractMessage(QString(), false);
+  this->setExtractMessage(this->ServerProblem, !this->ServerProblem.isEmpty());
 }
 
 void pqVesselTouchCenterlineWorkflow::onVolumeDataUpdated(pqPipelineSource* volume)
@@ -483,8 +484,29 @@ void pqVesselTouchCenterlineWorkflow::onVolumeDataUpdated(pqPipelineSource* volu
   }
 }
 
+void pqVesselTouchCenterlineWorkflow::setServerProblem(const QString& problem)
+{
+  const bool had = !this->ServerProblem.isEmpty();
+  this->ServerProblem = problem;
+  this->Ui.extractButton->setEnabled(problem.isEmpty());
+  this->Ui.extractButton->setToolTip(problem.isEmpty() ? this->ExtractToolTip : problem);
+  if (!problem.isEmpty())
+  {
+    this->setExtractMessage(problem, true);
+  }
+  else if (had)
+  {
+    this->setExtractMessage(QString(), false);
+  }
+}
+
 void pqVesselTouchCenterlineWorkflow::extract()
 {
+  if (!this->ServerProblem.isEmpty())
+  {
+    this->setExtractMessage(this->ServerProblem, true); // Extract is disabled; a script may call
+    return;
+  }
   pqPipelineSource* volume = this->Volumes->currentVolume();
   if (!volume)
   {

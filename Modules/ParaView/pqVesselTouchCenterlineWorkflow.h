@@ -63,6 +63,9 @@ public Q_SLOTS:
   /// After a state file was loaded: the panel shows the state's VesselCenterline (its volume,
   /// seed, intensity range and automatic choice) and feeds it on as the last extraction.
   void adoptFromState();
+  /// The active server cannot run VesselTouch's server-side filters (pqVesselTouchServerCheck):
+  /// Extract is disabled with `problem` as its tool tip and said beside it; "" enables it again.
+  void setServerProblem(const QString& problem);
 
 Q_SIGNALS:
   /// Centerlines were extracted: `paths` polylines.
@@ -102,6 +105,8 @@ private:
   pqVesselTouchRegionPreview* Preview = nullptr;
   /// Preview's tooltip (replaced by why not, with the data on a remote server).
   QString PreviewToolTip;
+  QString ExtractToolTip;
+  QString ServerProblem;
   QPointer<pqPipelineSource> SeedVolume;
   bool HasSeed = false;
   double Seed_mm[3] = { 0.0, 0.0, 0.0 };

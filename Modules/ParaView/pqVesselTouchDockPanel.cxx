@@ -5,6 +5,7 @@
 #include "pqVesselTouchDatasetSummary.h"
 #include "pqVesselTouchPanelValues.h"
 #include "pqVesselTouchSessionBinding.h"
+#include "pqVesselTouchServerCheck.h"
 #include "pqVesselTouchSessionStatus.h"
 #include "pqVesselTouchViewBinding.h"
 
@@ -44,6 +45,8 @@
 #include <QScrollArea>
 #include <QSignalBlocker>
 #include <QTimer>
+#include <QDateTime>
+#include <QDir>
 #include <QtDebug>
 
 #include <algorithm>
@@ -254,6 +257,17 @@ pqVesselTouchDockPanel::pqVesselTouchDockPanel(QWidget* parentObject)
     &pqApplicationCore::stateLoaded,
     this,
     [this]() { QTimer::singleShot(0, this, &pqVesselTouchDockPanel::pullFromSession); });
+  // Client/server faults (issue 19, item 6): a server without the plugin, a lost server.
+  auto* serverCheck = new pqVesselTouchServerCheck(this);
+  QObject::connect(serverCheck,
+    &pqVesselTouchServerCheck::problemChanged,
+    in.Centerlines,
+    &pqVesselTouchCenterlineWorkflow::setServerProblem);
+  in.Centerlines->setServerProblem(serverCheck->problem());
+  QObject::connect(serverCheck,
+    &pqVesselTouchServerCheck::connectionLost,
+    this,
+    &pqVesselTouchDockPanel::onConnectionLost);
   // The agent cone and the mouse in the render view follow this panel's session.
   new pqVesselTouchViewBinding(this);
   this->setActiveSource(pqActiveObjects::instance().activeSource());
@@ -602,6 +616,29 @@ void pqVesselTouchDockPanel::showDevice(const pqVesselTouchSessionStatus& status
   // The proxy's coupler stiffness must stay renderable by this device (Ikits eq. 7: a stiffer
   // coupler than the device holds at its rate goes unstable); damping has no reported bound.
   in.Ui.forceLawWidget->setDeviceLimits(caps.maxStiffness_N_per_m, 0.0);
+}
+
+void pqVesselTouchDockPanel::onConnectionLost(const QString& server)
+{
+  pqInternals& in = *this->Internals;
+  in.Binding->stop(); // zero force first: the rest may take a while
+  const QString file =
+    QDir(QDir::tempPath())
+      .filePath(QStringLiteral("vesseltouch-skeleton-%1-%2.vtp")
+                  .arg(QCoreApplication::applicationPid())
+                  .arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss"))));
+  const bool saved = in.Binding->saveSkeleton(file);
+  const QString message =
+    tr("The connection to the pvserver %1 was lost (the server died or the network went down): "
+       "the force is zero and the haptic loop stopped. %2 ParaView closes after a lost server "
+       "(it offers to save the state first); to go on, restart pvserver, File > Connect, load "
+       "the plugin on the server and re-extract.")
+      .arg(server,
+        saved ? tr("The skeleton was saved to %1 (open it built in to trace it again).").arg(file)
+              : tr("There was no skeleton to save."));
+  in.Binding->reportConnectionLost(message);
+  this->updateSessionStatus();
+  in.Ui.errorLabel->repaint(); // ParaView's own reaction (a modal dialog, then _exit) follows
 }
 
 void pqVesselTouchDockPanel::showError(const QString& message)

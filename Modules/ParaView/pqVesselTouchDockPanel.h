@@ -88,6 +88,9 @@ private Q_SLOTS:
   /// The proxy changed elsewhere (Python, a state file): show its values.
   void pullFromSession();
   void showError(const QString& message);
+  /// The pvserver `server` was lost (pqVesselTouchServerCheck): zero force, the skeleton saved,
+  /// the fault said in the status line (issue 19, item 6).
+  void onConnectionLost(const QString& server);
 
 private:
   /// The open device's capabilities, calibration (read-only, HID devices) and fault in the device

@@ -1,5 +1,7 @@
 #include "pqVesselTouchSeedPicker.h"
 
+#include "pqVesselTouchRemoteRayProbe.h"
+
 #include "vtouchRayMaximum.h"
 
 #include "pqPipelineSource.h"
@@ -149,10 +151,23 @@ bool pqVesselTouchSeedPicker::pickAt(pqRenderView* view,
   }
   if (!algorithm)
   {
-    // Connected to a separate pvserver: the voxels are not in this process.
-    Q_EMIT this->pickFailed(
-      tr("Pick seed reads the voxels in this ParaView: connect without a separate server."));
-    return false;
+    // Connected to a separate pvserver: the voxels are on its ranks; probe the ray there.
+    std::array<double, 3> near_mm{};
+    std::array<double, 3> far_mm{};
+    if (!clickRay(view, position, near_mm, far_mm))
+    {
+      Q_EMIT this->pickFailed(tr("Pick seed: no render view to pick in."));
+      return false;
+    }
+    const pqVesselTouchRemoteRayProbe::Result remote =
+      pqVesselTouchRemoteRayProbe::find(volume, near_mm.data(), far_mm.data());
+    if (!remote.found)
+    {
+      Q_EMIT this->pickFailed(remote.error);
+      return false;
+    }
+    Q_EMIT this->seedPicked(remote.seed_mm[0], remote.seed_mm[1], remote.seed_mm[2], remote.value);
+    return true;
   }
   proxy->UpdatePipeline();
   vtkImageData* image = vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0));

@@ -17,6 +17,11 @@
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSmartPointer.h"
+#include "vtkAlgorithm.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkSMStringVectorProperty.h"
+#include "vtkXMLPolyDataWriter.h"
 
 #include <QTimer>
 
@@ -242,6 +247,38 @@ void pqVesselTouchSessionBinding::stop()
   {
     session->InvokeCommand("Stop");
   }
+}
+
+void pqVesselTouchSessionBinding::reportConnectionLost(const QString& message)
+{
+  this->writeProperties(
+    [&](vtkSMProxy* proxy)
+    {
+      auto* property =
+        vtkSMStringVectorProperty::SafeDownCast(proxy->GetProperty("ConnectionLostMessage"));
+      if (property)
+      {
+        property->SetNumberOfElements(1);
+        property->SetElement(0, message.toUtf8().constData());
+      }
+    });
+}
+
+bool pqVesselTouchSessionBinding::saveSkeleton(const QString& fileName) const
+{
+  vtkSMProxy* session = this->proxy();
+  auto* algorithm = session ? vtkAlgorithm::SafeDownCast(session->GetClientSideObject()) : nullptr;
+  vtkPolyData* skeleton = algorithm && algorithm->GetNumberOfInputConnections(0) > 0
+                            ? vtkPolyData::SafeDownCast(algorithm->GetInputDataObject(0, 0))
+                            : nullptr;
+  if (!skeleton || skeleton->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetFileName(fileName.toUtf8().constData());
+  writer->SetInputData(skeleton);
+  return writer->Write() == 1;
 }
 
 void pqVesselTouchSessionBinding::writeProperties(const std::function<void(vtkSMProxy*)>& write)

@@ -51,6 +51,13 @@ public:
   /// Start/Stop commands. start() returns whether the session runs afterwards.
   bool start();
   void stop();
+  /// The pvserver was lost (issue 19, item 6): the session's connection-lost fault with
+  /// `message` (zero force at once, the loop stopped, the skeleton held:
+  /// vtkVesselTouchHapticSession::ReportConnectionLost). Only the client-side object is touched.
+  void reportConnectionLost(const QString& message);
+  /// Writes the skeleton the session holds (its input polydata, in this process) as VTK XML
+  /// PolyData; false when there is none or the file cannot be written.
+  bool saveSkeleton(const QString& fileName) const;
   /// Calls `write` on the session proxy (when there is one), then UpdateVTKObjects, without
   /// reporting these changes back as propertiesModified() and without lighting ParaView's Apply
   /// button: the running session feels them at its next tick.

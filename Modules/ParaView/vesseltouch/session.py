@@ -33,10 +33,11 @@ import math
 
 from paraview import servermanager, simple
 
+from .connection_watch import watch as watch_connection
 from .delivery import CenterlineDelivery, is_remote
 from .haptic_parameters import HapticParameterAccess, _key
 from .session_camera import SessionCamera
-from .session_results import SessionResults
+from .session_results import SessionResults, _first
 
 __all__ = ["HapticSession", "logic", "SESSION_NAME", "FORCE_LAW_ALIASES", "DEVICES"]
 
@@ -81,6 +82,8 @@ class HapticSession(SessionCamera, SessionResults, HapticParameterAccess):
         if proxy is None:
             proxy = self._create_proxy(self._delivered(centerline), registrationName)
         self.proxy = proxy
+        # Connected to a pvserver: its loss zeroes the force at once (connection_watch.py).
+        watch_connection(self._connection_lost)
         if centerline is not None:
             if view is not None:
                 self.SetCameraFromView(view)
@@ -139,6 +142,36 @@ class HapticSession(SessionCamera, SessionResults, HapticParameterAccess):
                      if n in self.HapticParameterNames() and not isinstance(v, (list, tuple, str))}
         if requested:
             self._check_refused(requested)
+
+    def _connection_lost(self, message):
+        """The pvserver is gone: zero force, the fault latched with `message`, the skeleton held
+        (vtkVesselTouchHapticSession::ReportConnectionLost; the proxy lives in this process)."""
+        prop = self.proxy.SMProxy.GetProperty("ConnectionLostMessage")
+        prop.SetNumberOfElements(1)
+        prop.SetElement(0, message)
+        self.proxy.SMProxy.UpdateVTKObjects()
+
+    def ConnectionLost(self):
+        """True after the pvserver this session's centerline came from was lost."""
+        return _first(self._info("ConnectionLostInfo")) == 1
+
+    def SaveSkeleton(self, filename):
+        """Writes the skeleton this session traces (the centerline polydata in this process) as
+        VTK XML PolyData (.vtp): also after the server was lost, from the copy delivered here."""
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+        if self._delivery is not None:
+            data = self._delivery.client_copy()
+        else:
+            self.proxy.UpdatePipeline()
+            data = self.proxy.GetClientSideObject().GetInputDataObject(0, 0)
+        if data is None or data.GetNumberOfPoints() == 0:
+            raise RuntimeError("SaveSkeleton: the session holds no skeleton (Bind a centerline)")
+        writer = vtkXMLPolyDataWriter()
+        writer.SetFileName(str(filename))
+        writer.SetInputData(data)
+        if not writer.Write():
+            raise RuntimeError("SaveSkeleton: cannot write %s" % filename)
+        return str(filename)
 
     def _info(self, name):
         self.proxy.UpdatePropertyInformation()

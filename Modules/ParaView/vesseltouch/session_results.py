@@ -26,7 +26,7 @@ class SessionResults:
         target_force and force (N x 2, N; force as sent to the device)."""
         from paraview.vtk.util.numpy_support import vtk_to_numpy
         delivery = getattr(self, "_delivery", None)
-        if delivery is not None:
+        if delivery is not None and not self.GetStatus()["connection_lost"]:
             delivery.update()  # every process, before the client's session reads it
         self.proxy.UpdatePipeline()
         # The session's output is in this process in both modes (the proxy is client-side).
@@ -57,13 +57,16 @@ class SessionResults:
         return state
 
     def GetStatus(self):
-        """running, fault code and text, log length, dropped log entries, skeleton size."""
+        """running, fault code and text, log length, dropped log entries, skeleton size, and
+        whether the pvserver was lost (fault 4, CONNECTION_LOST_FAULT: its text says what to do)."""
         v = list(self._info("SessionStatusInfo"))
         return {"running": bool(v[0]), "fault": int(v[1]), "log_entries": int(v[2]),
                 "dropped_log_entries": int(v[3]), "paths": int(v[4]), "points": int(v[5]),
                 "fault_text": self._info("FaultInfo"),
                 "scheduler": self._info("SchedulerNoticeInfo"),
-                "realtime_scheduling": _first(self._info("RealTimeSchedulingInfo")) == 1}
+                "realtime_scheduling": _first(self._info("RealTimeSchedulingInfo")) == 1,
+                # The pvserver was lost (fault 4 until ClearFault; the skeleton stays held).
+                "connection_lost": _first(self._info("ConnectionLostInfo")) == 1}
 
     def GetDeviceCapabilities(self):
         """What the open device can do, or None when no device is open (before Start, after

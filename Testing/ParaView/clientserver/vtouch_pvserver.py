@@ -89,10 +89,32 @@ class ParallelServer:
     def is_running(self):
         return self.process is not None and self.process.poll() is None
 
+    def session_pids(self):
+        """Every process of the server's session: mpiexec and its ranks (Open MPI puts each rank
+        in a process group of its own, but they stay in the session mpiexec leads)."""
+        if self.process is None:
+            return []
+        pids = []
+        for entry in os.listdir("/proc"):
+            if entry.isdigit() and int(entry) != os.getpid():
+                try:
+                    if os.getsid(int(entry)) == self.process.pid:
+                        pids.append(int(entry))
+                except OSError:
+                    pass  # gone meanwhile
+        return pids
+
     def kill(self):
-        """Kills the server at once (a crash, for the fault tests)."""
+        """Kills the server at once (a crash, for the fault tests): SIGKILL to mpiexec's group and
+        to each rank by its id (the ranks have process groups of their own)."""
+        ranks = self.session_pids()
         if self.is_running():
             os.killpg(self.process.pid, signal.SIGKILL)
+        for pid in ranks:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except OSError:
+                pass
 
     def stop(self):
         if self.process is None:
@@ -132,10 +154,11 @@ def wait_until(condition, timeout_s, step_s=0.1):
         time.sleep(step_s)
 
 
-def run_connected(plugin, check, body, ranks=2, remote_plugin=True):
+def run_connected(plugin, check, body, ranks=2, remote_plugin=True, pass_server=False):
     """The client/server tests' frame: starts a `ranks`-rank pvserver, connects pvpython to it,
     loads `plugin` on both sides (the same file; only in the client when `remote_plugin` is
-    False) and checks the rank count, runs body(), then
+    False) and checks the rank count, runs body() (body(server) with `pass_server`: the fault
+    tests kill it), then
     disconnects and checks that the server exits and frees its port. Any exception is a failed
     check, reported with the server's output; the server is always ended."""
     from paraview import servermanager as sm
@@ -150,7 +173,7 @@ def run_connected(plugin, check, body, ranks=2, remote_plugin=True):
         simple.LoadPlugin(plugin, remote=False)
         partitions = sm.ActiveConnection.GetNumberOfDataPartitions()
         check(partitions == ranks, "the server has %d ranks, not %d" % (partitions, ranks))
-        body()
+        body(server) if pass_server else body()
         simple.Disconnect()
         code = server.stop()
         check(code is not None, "the server did not exit after the client disconnected")
