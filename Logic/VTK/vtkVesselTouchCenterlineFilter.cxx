@@ -326,8 +326,10 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
       whole,
       this->GetGhostMarginVoxels(spacing));
     std::copy(grown.begin(), grown.end(), extent);
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), piece);
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), pieces);
+    // As one piece of that extent: a reader that splits by piece number (ParaView's XML
+    // readers split their own way) would intersect its split with the extent.
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   }
   else if (piece > 0)
@@ -677,6 +679,26 @@ vtouch::IndexFrame indexFrame(vtkImageData* image)
   return frame;
 }
 
+/// `piece` (an extent that need not start at 0) as an image whose extent starts at 0 and whose
+/// origin is the world position of its first voxel: the coder indexes voxels from 0 (the point
+/// data arrays are shared, not copied).
+vtkSmartPointer<vtkImageData> pieceFromIndexZero(vtkImageData* piece)
+{
+  int extent[6];
+  piece->GetExtent(extent);
+  auto local = vtkSmartPointer<vtkImageData>::New();
+  local->SetDimensions(
+    extent[1] - extent[0] + 1, extent[3] - extent[2] + 1, extent[5] - extent[4] + 1);
+  local->SetSpacing(piece->GetSpacing());
+  local->SetDirectionMatrix(piece->GetDirectionMatrix());
+  double first[3];
+  piece->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], first);
+  local->SetOrigin(first);
+  local->GetPointData()->ShallowCopy(piece->GetPointData());
+  local->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  return local;
+}
+
 void addIntValue(vtkFieldData* fd, const char* name, int value)
 {
   vtkNew<vtkIntArray> a;
@@ -731,7 +753,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(
   if (input)
   {
     this->QuietErrors = true;
-    this->ExtractVolume(inputVector, input, own);
+    this->ExtractVolume(inputVector, pieceFromIndexZero(input), own);
     this->QuietErrors = false;
     std::string error;
     if (own->GetNumberOfLines() > 0 &&
