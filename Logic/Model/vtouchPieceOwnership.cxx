@@ -16,8 +16,8 @@ Vec3 IndexFrame::toIndex(const Vec3& p) const
   {
     // direction^T * d: the direction matrix is a rotation.
     const double along = direction[static_cast<std::size_t>(c)] * d[0] +
-      direction[static_cast<std::size_t>(3 + c)] * d[1] +
-      direction[static_cast<std::size_t>(6 + c)] * d[2];
+                         direction[static_cast<std::size_t>(3 + c)] * d[1] +
+                         direction[static_cast<std::size_t>(6 + c)] * d[2];
     index[c] = along / spacing_mm[static_cast<std::size_t>(c)];
   }
   return { index[0], index[1], index[2] };

@@ -66,9 +66,9 @@ private:
 /// + 2 voxels (the 26-connected trace and the cut's midpoint), in voxels of the smallest spacing.
 struct GhostMarginRule
 {
-  double largestRadius_mm = 0.0;       ///< the largest vessel radius the margin must cover
-  double minimumBranchLength = 2.5;    ///< VesselCenterline's MinimumBranchLength (radii)
-  bool useVesselness = false;          ///< VesselCenterline's UseVesselness
+  double largestRadius_mm = 0.0;        ///< the largest vessel radius the margin must cover
+  double minimumBranchLength = 2.5;     ///< VesselCenterline's MinimumBranchLength (radii)
+  bool useVesselness = false;           ///< VesselCenterline's UseVesselness
   double vesselnessSigmaMaximum_mm = 0; ///< VesselCenterline's VesselnessSigmaMaximum
   /// G in voxels of the smallest of `spacing_mm` (>= 2).
   int voxels(const std::array<double, 3>& spacing_mm) const;

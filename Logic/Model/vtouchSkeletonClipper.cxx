@@ -3,7 +3,9 @@
 namespace vtouch
 {
 
-SkeletonClipper::SkeletonClipper(const PieceOwnership& ownership, const IndexFrame& frame, int piece)
+SkeletonClipper::SkeletonClipper(const PieceOwnership& ownership,
+  const IndexFrame& frame,
+  int piece)
   : ownership_(ownership)
   , frame_(frame)
   , piece_(piece)

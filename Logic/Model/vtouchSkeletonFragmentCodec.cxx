@@ -7,8 +7,8 @@ namespace vtouch
 
 namespace
 {
-constexpr std::size_t kHeader = 12;  // piece, count, head 5, tail 5
-constexpr std::size_t kPoint = 10;   // position 3, tangent 3, curvature, torsion, radius, label
+constexpr std::size_t kHeader = 12; // piece, count, head 5, tail 5
+constexpr std::size_t kPoint = 10;  // position 3, tangent 3, curvature, torsion, radius, label
 
 void putEnd(std::vector<double>& d, const FragmentEnd& e)
 {
@@ -46,16 +46,25 @@ std::vector<double> SkeletonFragmentCodec::encode(const std::vector<SkeletonFrag
     for (const SkeletonPoint& p : f.points)
     {
       d.insert(d.end(),
-        { p.position_World_mm.x, p.position_World_mm.y, p.position_World_mm.z, p.tangent_World.x,
-          p.tangent_World.y, p.tangent_World.z, p.curvature_per_mm, p.torsion_per_mm, p.radius_mm,
+        { p.position_World_mm.x,
+          p.position_World_mm.y,
+          p.position_World_mm.z,
+          p.tangent_World.x,
+          p.tangent_World.y,
+          p.tangent_World.z,
+          p.curvature_per_mm,
+          p.torsion_per_mm,
+          p.radius_mm,
           static_cast<double>(static_cast<int>(p.label)) });
     }
   }
   return d;
 }
 
-bool SkeletonFragmentCodec::decode(
-  const double* data, std::size_t size, std::vector<SkeletonFragment>& out, std::string& error)
+bool SkeletonFragmentCodec::decode(const double* data,
+  std::size_t size,
+  std::vector<SkeletonFragment>& out,
+  std::string& error)
 {
   if (size == 0)
   {
@@ -80,7 +89,7 @@ bool SkeletonFragmentCodec::decode(
     fragment.piece = static_cast<int>(data[at]);
     const double points = data[at + 1];
     if (!(points >= 1.0) || points != std::floor(points) ||
-      at + kHeader + static_cast<std::size_t>(points) * kPoint > size)
+        at + kHeader + static_cast<std::size_t>(points) * kPoint > size)
     {
       error = "bad or truncated point count";
       return false;

@@ -18,8 +18,10 @@ public:
   static std::vector<double> encode(const std::vector<SkeletonFragment>& fragments);
   /// Appends the fragments in `data[0, size)` to `out`; false with the reason in `error` when the
   /// array is truncated or holds impossible values.
-  static bool decode(
-    const double* data, std::size_t size, std::vector<SkeletonFragment>& out, std::string& error);
+  static bool decode(const double* data,
+    std::size_t size,
+    std::vector<SkeletonFragment>& out,
+    std::string& error);
 };
 
 } // namespace vtouch

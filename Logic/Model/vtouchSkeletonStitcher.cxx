@@ -28,14 +28,14 @@ std::string describe(const char* what, const Vec3& p, int piece)
 {
   std::ostringstream text;
   text.precision(4);
-  text << what << " of piece " << piece << " at (" << p.x << ", " << p.y << ", " << p.z
-       << ") mm";
+  text << what << " of piece " << piece << " at (" << p.x << ", " << p.y << ", " << p.z << ") mm";
   return text.str();
 }
 
 /// Pairs the cut ends: partner[e] is the end joined to e, or -1.
-std::vector<long> matchCutEnds(
-  const std::vector<SkeletonFragment>& f, double tolerance_mm, StitchReport& report)
+std::vector<long> matchCutEnds(const std::vector<SkeletonFragment>& f,
+  double tolerance_mm,
+  StitchReport& report)
 {
   const std::size_t ends = 2 * f.size();
   std::vector<long> partner(ends, -1);
@@ -62,8 +62,8 @@ std::vector<long> matchCutEnds(
       const FragmentEnd& ea = endOf(f, a);
       const FragmentEnd& eb = endOf(f, b);
       const double d = (ea.position_World_mm - eb.position_World_mm).norm();
-      const double reach = std::max(tolerance_mm,
-        0.5 * std::min(endPoint(f, a).radius_mm, endPoint(f, b).radius_mm));
+      const double reach =
+        std::max(tolerance_mm, 0.5 * std::min(endPoint(f, a).radius_mm, endPoint(f, b).radius_mm));
       if (d > reach)
       {
         continue;
@@ -154,8 +154,13 @@ ChainEnds walkChain(const std::vector<SkeletonFragment>& f,
 }
 
 /// The nearest point of `s` to `p` but path `self`'s points within 2 of index `selfPoint`.
-bool nearestPoint(
-  const QSkeleton& s, const Vec3& p, int self, long selfPoint, int& path, int& point, double& d)
+bool nearestPoint(const QSkeleton& s,
+  const Vec3& p,
+  int self,
+  long selfPoint,
+  int& path,
+  int& point,
+  double& d)
 {
   d = std::numeric_limits<double>::infinity();
   for (const SkeletonPath& candidate : s.paths)
@@ -179,8 +184,8 @@ bool nearestPoint(
 }
 } // namespace
 
-QSkeleton SkeletonStitcher::stitch(
-  const std::vector<SkeletonFragment>& fragments, StitchReport& report) const
+QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragments,
+  StitchReport& report) const
 {
   report = StitchReport{};
   std::vector<SkeletonFragment> f;

@@ -14,9 +14,9 @@ namespace vtouch
 /// What stitching did; unmatched ends are reported, never fatal.
 struct StitchReport
 {
-  int cutEndsJoined = 0;          ///< cut ends joined to the matching cut end (counted once per pair)
-  int cutEndsUnmatched = 0;       ///< cut ends with no partner: they became free ends
-  int attachmentsResolved = 0;    ///< attached ends whose parent point was found
+  int cutEndsJoined = 0;       ///< cut ends joined to the matching cut end (counted once per pair)
+  int cutEndsUnmatched = 0;    ///< cut ends with no partner: they became free ends
+  int attachmentsResolved = 0; ///< attached ends whose parent point was found
   int attachmentsUnresolved = 0;  ///< attached ends with no point near: they became free ends
   int loopsClosed = 0;            ///< chains of fragments that closed on themselves
   std::vector<std::string> notes; ///< one sentence per unmatched or unresolved end

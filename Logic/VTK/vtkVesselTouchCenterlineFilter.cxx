@@ -30,6 +30,7 @@
 #include <itkImportImageFilter.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <chrono>
 #include <memory>
@@ -285,8 +286,8 @@ int requestedPiece(vtkInformationVector* outputVector)
 {
   vtkInformation* info = outputVector->GetInformationObject(0);
   return info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
+           ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+           : 0;
 }
 
 /// The number of pieces the output is asked in (1 built in).
@@ -294,8 +295,8 @@ int requestedPieces(vtkInformationVector* outputVector)
 {
   vtkInformation* info = outputVector->GetInformationObject(0);
   return info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    : 1;
+           ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+           : 1;
 }
 } // namespace
 
@@ -381,8 +382,9 @@ void vtkVesselTouchCenterlineFilter::Complain(const std::string& message)
   }
 }
 
-int vtkVesselTouchCenterlineFilter::ExtractVolume(
-  vtkInformationVector** inputVector, vtkImageData* input, vtkPolyData* output)
+int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVector,
+  vtkImageData* input,
+  vtkPolyData* output)
 {
   this->DownsampleFactorUsed = 0;
   this->LastRunKey.clear();
@@ -439,7 +441,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(
   if (this->DownsampleFactor < 0)
   {
     this->Complain("DownsampleFactor must be 0 (automatic) or a factor >= 1, got " +
-      std::to_string(this->DownsampleFactor) + ".");
+                   std::to_string(this->DownsampleFactor) + ".");
     return 1;
   }
   this->LastRunKey = this->RunKey(input, scalars);
@@ -661,83 +663,8 @@ int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]
   return rule.voxels({ spacing[0], spacing[1], spacing[2] });
 }
 
-namespace
-{
-/// The world <-> index map of `image`, index 0 at its origin (not at its extent's start).
-vtouch::IndexFrame indexFrame(vtkImageData* image)
-{
-  vtouch::IndexFrame frame;
-  image->GetOrigin(frame.origin_mm.data());
-  image->GetSpacing(frame.spacing_mm.data());
-  if (vtkMatrix3x3* m = image->GetDirectionMatrix())
-  {
-    for (int e = 0; e < 9; ++e)
-    {
-      frame.direction[static_cast<std::size_t>(e)] = m->GetData()[e];
-    }
-  }
-  return frame;
-}
-
-/// `piece` (an extent that need not start at 0) as an image whose extent starts at 0 and whose
-/// origin is the world position of its first voxel: the coder indexes voxels from 0 (the point
-/// data arrays are shared, not copied).
-vtkSmartPointer<vtkImageData> pieceFromIndexZero(vtkImageData* piece)
-{
-  int extent[6];
-  piece->GetExtent(extent);
-  auto local = vtkSmartPointer<vtkImageData>::New();
-  local->SetDimensions(
-    extent[1] - extent[0] + 1, extent[3] - extent[2] + 1, extent[5] - extent[4] + 1);
-  local->SetSpacing(piece->GetSpacing());
-  local->SetDirectionMatrix(piece->GetDirectionMatrix());
-  double first[3];
-  piece->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], first);
-  local->SetOrigin(first);
-  local->GetPointData()->ShallowCopy(piece->GetPointData());
-  local->GetFieldData()->ShallowCopy(piece->GetFieldData());
-  return local;
-}
-
-void addIntValue(vtkFieldData* fd, const char* name, int value)
-{
-  vtkNew<vtkIntArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
-}
-
-/// The ranks' reports as field data on the stitched output (the delivery keeps the first rank's).
-void addPieceReports(vtkFieldData* fd, const std::vector<vtouch::PieceReport>& pieces)
-{
-  vtkNew<vtkIntArray> extents;
-  extents->SetName("PieceInputExtents");
-  extents->SetNumberOfComponents(6);
-  vtkNew<vtkDoubleArray> bytes;
-  bytes->SetName("PieceReaderVoxelBytesRead");
-  vtkNew<vtkDoubleArray> peak;
-  peak->SetName("PiecePeakResidentKiB");
-  vtkNew<vtkIntArray> fragments;
-  fragments->SetName("PieceFragments");
-  for (const vtouch::PieceReport& r : pieces)
-  {
-    double e[6];
-    std::copy(r.inputExtent.begin(), r.inputExtent.end(), e);
-    extents->InsertNextTuple(e);
-    bytes->InsertNextValue(r.readerBytes);
-    peak->InsertNextValue(r.peakResident_kiB);
-    fragments->InsertNextValue(static_cast<int>(r.fragments));
-  }
-  for (vtkAbstractArray* a :
-    std::vector<vtkAbstractArray*>{ extents, bytes, peak, fragments })
-  {
-    fd->AddArray(a);
-  }
-}
-} // namespace
-
-int vtkVesselTouchCenterlineFilter::RequestDistributed(
-  vtkInformationVector** inputVector, vtkPolyData* output)
+int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** inputVector,
+  vtkPolyData* output)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkMultiProcessController* controller = vtouch::DistributedCenterline::controllerFor(
@@ -753,16 +680,17 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(
   if (input)
   {
     this->QuietErrors = true;
-    this->ExtractVolume(inputVector, pieceFromIndexZero(input), own);
+    this->ExtractVolume(inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), own);
     this->QuietErrors = false;
     std::string error;
-    if (own->GetNumberOfLines() > 0 &&
-      !vtouch::PolyDataToQSkeleton().convert(own, skeleton, error))
+    if (own->GetNumberOfLines() > 0 && !vtouch::PolyDataToQSkeleton().convert(own, skeleton, error))
     {
       this->ExtractionMessage = "VesselCenterline: this piece's skeleton is unreadable: " + error;
       skeleton = vtouch::QSkeleton{};
     }
-    frame = indexFrame(input);
+    report.rangeLower = this->IntensityRangeUsed[0];
+    report.rangeUpper = this->IntensityRangeUsed[1];
+    frame = vtouch::DistributedCenterline::indexFrame(input);
     largestSpacing = std::max({ frame.spacing_mm[0], frame.spacing_mm[1], frame.spacing_mm[2] });
     input->GetExtent(report.inputExtent.data());
     if (vtkDataArray* bytes = input->GetFieldData()->GetArray("ReaderVoxelBytesRead"))
@@ -796,8 +724,8 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(
   if (result.skeleton.empty())
   {
     message = this->ExtractionMessage.empty()
-      ? std::string("VesselCenterline: no piece of the volume gave a skeleton.")
-      : this->ExtractionMessage;
+                ? std::string("VesselCenterline: no piece of the volume gave a skeleton.")
+                : this->ExtractionMessage;
   }
   if (!result.error.empty())
   {
@@ -809,13 +737,14 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(
     this->IntensityRangeUsed[1],
     this->AutomaticIntensityRange,
     message);
-  addIntValue(fd, "DistributedPieces", static_cast<int>(result.pieces.size()));
-  addIntValue(fd, "GhostMarginVoxels", this->GetGhostMarginVoxels(frame.spacing_mm.data()));
-  addIntValue(fd, "StitchCutEndsJoined", result.stitch.cutEndsJoined);
-  addIntValue(fd, "StitchCutEndsUnmatched", result.stitch.cutEndsUnmatched);
-  addIntValue(fd, "StitchAttachmentsUnresolved", result.stitch.attachmentsUnresolved);
-  addIntValue(fd, "StitchLoopsClosed", result.stitch.loopsClosed);
-  addPieceReports(fd, result.pieces);
+  const bool rangesDiffer = vtouch::DistributedCenterline::addReports(
+    fd, result, this->GetGhostMarginVoxels(frame.spacing_mm.data()), this->IntensityRangeUsed);
+  if (rangesDiffer)
+  {
+    vtkWarningMacro("VesselCenterline (distributed): the ranks estimated different intensity "
+                    "ranges on their pieces; set AutomaticIntensityRange off and the thresholds "
+                    "for one range everywhere.");
+  }
   for (const std::string& note : result.stitch.notes)
   {
     vtkWarningMacro(<< "VesselCenterline (distributed): " << note);

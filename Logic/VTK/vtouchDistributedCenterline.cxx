@@ -3,13 +3,21 @@
 #include "vtouchSkeletonClipper.h"
 #include "vtouchSkeletonFragmentCodec.h"
 
+#include "vtkDoubleArray.h"
 #include "vtkExtentTranslator.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <sstream>
 
 namespace vtouch
@@ -52,14 +60,21 @@ double DistributedCenterline::peakResidentKiB()
 
 namespace
 {
-constexpr int kReportValues = 9;
+constexpr int kReportValues = 11;
 
 std::array<double, kReportValues> encodeReport(const PieceReport& r)
 {
-  return { static_cast<double>(r.inputExtent[0]), static_cast<double>(r.inputExtent[1]),
-    static_cast<double>(r.inputExtent[2]), static_cast<double>(r.inputExtent[3]),
-    static_cast<double>(r.inputExtent[4]), static_cast<double>(r.inputExtent[5]), r.readerBytes,
-    r.peakResident_kiB, r.fragments };
+  return { static_cast<double>(r.inputExtent[0]),
+    static_cast<double>(r.inputExtent[1]),
+    static_cast<double>(r.inputExtent[2]),
+    static_cast<double>(r.inputExtent[3]),
+    static_cast<double>(r.inputExtent[4]),
+    static_cast<double>(r.inputExtent[5]),
+    r.readerBytes,
+    r.peakResident_kiB,
+    r.fragments,
+    r.rangeLower,
+    r.rangeUpper };
 }
 
 PieceReport decodeReport(const double* d)
@@ -72,6 +87,8 @@ PieceReport decodeReport(const double* d)
   r.readerBytes = d[6];
   r.peakResident_kiB = d[7];
   r.fragments = d[8];
+  r.rangeLower = d[9];
+  r.rangeUpper = d[10];
   return r;
 }
 } // namespace
@@ -87,8 +104,7 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   const int ranks = controller->GetNumberOfProcesses();
   const int rank = controller->GetLocalProcessId();
   const PieceOwnership ownership(pieceExtents(whole, ranks), whole);
-  const std::vector<SkeletonFragment> fragments =
-    SkeletonClipper(ownership, frame, rank).clip(own);
+  const std::vector<SkeletonFragment> fragments = SkeletonClipper(ownership, frame, rank).clip(own);
   const std::vector<double> sent = SkeletonFragmentCodec::encode(fragments);
   report.fragments = static_cast<double>(fragments.size());
   report.peakResident_kiB = peakResidentKiB();
@@ -131,6 +147,95 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   stitcher.joinTolerance_mm = joinTolerance_mm;
   result.skeleton = stitcher.stitch(all, result.stitch);
   return true;
+}
+
+IndexFrame DistributedCenterline::indexFrame(vtkImageData* image)
+{
+  IndexFrame frame;
+  image->GetOrigin(frame.origin_mm.data());
+  image->GetSpacing(frame.spacing_mm.data());
+  if (vtkMatrix3x3* m = image->GetDirectionMatrix())
+  {
+    for (int e = 0; e < 9; ++e)
+    {
+      frame.direction[static_cast<std::size_t>(e)] = m->GetData()[e];
+    }
+  }
+  return frame;
+}
+
+vtkSmartPointer<vtkImageData> DistributedCenterline::pieceFromIndexZero(vtkImageData* piece)
+{
+  int extent[6];
+  piece->GetExtent(extent);
+  auto local = vtkSmartPointer<vtkImageData>::New();
+  local->SetDimensions(
+    extent[1] - extent[0] + 1, extent[3] - extent[2] + 1, extent[5] - extent[4] + 1);
+  local->SetSpacing(piece->GetSpacing());
+  local->SetDirectionMatrix(piece->GetDirectionMatrix());
+  double first[3];
+  piece->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], first);
+  local->SetOrigin(first);
+  local->GetPointData()->ShallowCopy(piece->GetPointData());
+  local->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  return local;
+}
+
+namespace
+{
+void addIntValue(vtkFieldData* fd, const char* name, int value)
+{
+  vtkNew<vtkIntArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+} // namespace
+
+bool DistributedCenterline::addReports(vtkFieldData* fd,
+  const Result& result,
+  int ghostMarginVoxels,
+  const double rangeUsed[2])
+{
+  addIntValue(fd, "DistributedPieces", static_cast<int>(result.pieces.size()));
+  addIntValue(fd, "GhostMarginVoxels", ghostMarginVoxels);
+  addIntValue(fd, "StitchCutEndsJoined", result.stitch.cutEndsJoined);
+  addIntValue(fd, "StitchCutEndsUnmatched", result.stitch.cutEndsUnmatched);
+  addIntValue(fd, "StitchAttachmentsUnresolved", result.stitch.attachmentsUnresolved);
+  addIntValue(fd, "StitchLoopsClosed", result.stitch.loopsClosed);
+  vtkNew<vtkIntArray> extents;
+  extents->SetName("PieceInputExtents");
+  extents->SetNumberOfComponents(6);
+  vtkNew<vtkDoubleArray> bytes;
+  bytes->SetName("PieceReaderVoxelBytesRead");
+  vtkNew<vtkDoubleArray> peak;
+  peak->SetName("PiecePeakResidentKiB");
+  vtkNew<vtkIntArray> fragments;
+  fragments->SetName("PieceFragments");
+  // With AutomaticIntensityRange each rank estimates the range on its own piece: the same for a
+  // binary mask (its midpoint), not always for a raw volume.
+  bool rangesDiffer = false;
+  for (const PieceReport& r : result.pieces)
+  {
+    double e[6];
+    std::copy(r.inputExtent.begin(), r.inputExtent.end(), e);
+    extents->InsertNextTuple(e);
+    bytes->InsertNextValue(r.readerBytes);
+    peak->InsertNextValue(r.peakResident_kiB);
+    fragments->InsertNextValue(static_cast<int>(r.fragments));
+    const double scale = std::max({ 1.0, std::abs(r.rangeLower), std::abs(r.rangeUpper) });
+    if (r.fragments > 0.0 && (std::abs(r.rangeLower - rangeUsed[0]) > 1e-6 * scale ||
+                               std::abs(r.rangeUpper - rangeUsed[1]) > 1e-6 * scale))
+    {
+      rangesDiffer = true;
+    }
+  }
+  fd->AddArray(extents);
+  fd->AddArray(bytes);
+  fd->AddArray(peak);
+  fd->AddArray(fragments);
+  addIntValue(fd, "PieceIntensityRangesDiffer", rangesDiffer ? 1 : 0);
+  return rangesDiffer;
 }
 
 } // namespace vtouch

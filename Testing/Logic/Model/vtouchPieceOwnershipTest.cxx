@@ -19,7 +19,7 @@ TEST(PieceOwnership, EveryPositionHasOneOwnerAndSharedFacesBelongToTheUpperPiece
   const PieceOwnership o({ { 0, 32, 0, 31, 0, 31 }, { 32, 63, 0, 31, 0, 31 } }, whole);
   EXPECT_EQ(o.owner({ 31.99, 5, 5 }), 0);
   EXPECT_EQ(o.owner({ 32.0, 5, 5 }), 1);
-  EXPECT_EQ(o.owner({ -0.4, 5, 5 }), 0);  // beyond the volume's face: the piece on that face
+  EXPECT_EQ(o.owner({ -0.4, 5, 5 }), 0); // beyond the volume's face: the piece on that face
   EXPECT_EQ(o.owner({ 63.4, 40, 5 }), 1);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> u(-1.0, 65.0);

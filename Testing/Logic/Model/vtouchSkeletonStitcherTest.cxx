@@ -226,7 +226,7 @@ TEST(SkeletonStitcher, ALoopSpanningTwoPiecesClosesAgain)
   // an arc with two free ends in its ghost layer; the owned parts have two cut ends each.
   const double pi = std::acos(-1.0);
   QSkeleton left, right;
-  left.paths.push_back(path(0, arc(0.4 * pi, 1.6 * pi)));  // x <= ~12.2
+  left.paths.push_back(path(0, arc(0.4 * pi, 1.6 * pi)));     // x <= ~12.2
   right.paths.push_back(path(0, arc(-0.55 * pi, 0.55 * pi))); // x >= ~8.9
   StitchReport report;
   const QSkeleton s = clipAndStitch({ left, right }, twoPieces(), report);
@@ -274,7 +274,7 @@ TEST(SkeletonStitcher, APathCrossingACornerOfFourPiecesComesBackWhole)
   std::vector<SkeletonPoint> diagonal, nearCorner;
   for (int i = 0; i < 17; ++i)
   {
-    diagonal.push_back(point(2.0 + i, 2.0 + i, 5.0)); // (10, 10) exactly on the corner
+    diagonal.push_back(point(2.0 + i, 2.0 + i, 5.0));    // (10, 10) exactly on the corner
     nearCorner.push_back(point(2.0 + i, 18.3 - i, 3.0)); // across pieces 2 -> 0 / 3 -> 1
   }
   whole.paths.push_back(path(0, diagonal));
