@@ -182,6 +182,36 @@ bool nearestPoint(const QSkeleton& s,
   }
   return std::isfinite(d);
 }
+/// Counts the points labelled Bifurcation that no junction of `s` is near (a lost branch).
+void reportLostBranches(const QSkeleton& s, double tolerance_mm, StitchReport& report)
+{
+  std::vector<Vec3> junctionPoints;
+  for (const Junction& j : s.junctions)
+  {
+    junctionPoints.push_back(s.paths[static_cast<std::size_t>(j.parentPath)]
+                               .points[static_cast<std::size_t>(j.parentPoint)]
+                               .position_World_mm);
+  }
+  for (const SkeletonPath& path : s.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      if (q.label != PointLabel::Bifurcation)
+      {
+        continue;
+      }
+      const double reach = std::max(tolerance_mm, q.radius_mm);
+      const bool near = std::any_of(junctionPoints.begin(),
+        junctionPoints.end(),
+        [&](const Vec3& x) { return (x - q.position_World_mm).norm() <= reach; });
+      if (!near)
+      {
+        ++report.bifurcationsWithoutBranch;
+        report.notes.push_back(describe("bifurcation without its branch", q.position_World_mm, -1));
+      }
+    }
+  }
+}
 } // namespace
 
 QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragments,
@@ -276,6 +306,7 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
       ++report.attachmentsResolved;
     }
   }
+  reportLostBranches(s, joinTolerance_mm, report);
   return s;
 }
 

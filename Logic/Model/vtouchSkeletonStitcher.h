@@ -17,8 +17,12 @@ struct StitchReport
   int cutEndsJoined = 0;       ///< cut ends joined to the matching cut end (counted once per pair)
   int cutEndsUnmatched = 0;    ///< cut ends with no partner: they became free ends
   int attachmentsResolved = 0; ///< attached ends whose parent point was found
-  int attachmentsUnresolved = 0;  ///< attached ends with no point near: they became free ends
-  int loopsClosed = 0;            ///< chains of fragments that closed on themselves
+  int attachmentsUnresolved = 0; ///< attached ends with no point near: they became free ends
+  int loopsClosed = 0;           ///< chains of fragments that closed on themselves
+  /// Points a rank labelled Bifurcation with no junction within tolerance after stitching: a
+  /// branch was lost (a vessel running along a piece face, whose points each rank placed on the
+  /// other's side: Docs/CLIENT-SERVER.md).
+  int bifurcationsWithoutBranch = 0;
   std::vector<std::string> notes; ///< one sentence per unmatched or unresolved end
 };
 

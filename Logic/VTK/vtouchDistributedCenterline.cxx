@@ -203,6 +203,7 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
   addIntValue(fd, "StitchCutEndsUnmatched", result.stitch.cutEndsUnmatched);
   addIntValue(fd, "StitchAttachmentsUnresolved", result.stitch.attachmentsUnresolved);
   addIntValue(fd, "StitchLoopsClosed", result.stitch.loopsClosed);
+  addIntValue(fd, "StitchBifurcationsWithoutBranch", result.stitch.bifurcationsWithoutBranch);
   vtkNew<vtkIntArray> extents;
   extents->SetName("PieceInputExtents");
   extents->SetNumberOfComponents(6);

@@ -318,6 +318,28 @@ TEST(SkeletonStitcher, UnmatchedCutEndsAreReportedAndBecomeFreeEnds)
   const QSkeleton t = clipAndStitch({ whole, shifted }, twoPieces(), report);
   EXPECT_EQ(t.paths.size(), 2u);
   EXPECT_EQ(report.cutEndsUnmatched, 2);
+  // A branch lost by both pieces (each placed it on the other's side): its bifurcation is named.
+  QSkeleton branched;
+  std::vector<SkeletonPoint> trunk, branch;
+  for (int i = 0; i < 19; ++i)
+  {
+    trunk.push_back(point(1.0 + i, 10.0, 5.0));
+  }
+  for (int i = 0; i < 6; ++i)
+  {
+    branch.push_back(point(5.0, 10.0 + i, 5.0));
+  }
+  branched.paths.push_back(path(0, trunk));
+  branched.paths.push_back(path(1, branch));
+  attach(branched, 1, Junction::End::Head, 0, 4);
+  branched.paths[0].points[4].label = PointLabel::Bifurcation;
+  QSkeleton trunkOnly = branched;
+  trunkOnly.paths.pop_back();
+  trunkOnly.junctions.clear();
+  clipAndStitch({ trunkOnly, trunkOnly }, twoPieces(), report);
+  EXPECT_EQ(report.bifurcationsWithoutBranch, 1);
+  clipAndStitch({ branched, branched }, twoPieces(), report);
+  EXPECT_EQ(report.bifurcationsWithoutBranch, 0);
   // Nothing at all: an empty skeleton, no crash.
   const QSkeleton empty = SkeletonStitcher().stitch({}, report);
   EXPECT_TRUE(empty.empty());

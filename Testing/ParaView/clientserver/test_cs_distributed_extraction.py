@@ -142,6 +142,8 @@ def distributed(references):
               "%s: a vessel crosses the piece boundary (a cut end was joined)" % name)
         check(field(data, "StitchCutEndsUnmatched")[0][0] == 0,
               "%s: every cut end found its partner" % name)
+        check(field(data, "StitchBifurcationsWithoutBranch")[0][0] == 0,
+              "%s: every bifurcation kept its branch" % name)
         check(topology(got) == topology(reference),
               "%s: the stitched skeleton has the built-in topology (%s vs %s)"
               % (name, topology(got), topology(reference)))
