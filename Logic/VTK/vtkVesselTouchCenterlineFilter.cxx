@@ -1,11 +1,14 @@
 #include "vtkVesselTouchCenterlineFilter.h"
 
 #include "vtouchCandidateRegionRunner.h"
+#include "vtouchDistributedCenterline.h"
+#include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -13,6 +16,7 @@
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -26,6 +30,7 @@
 #include <itkImportImageFilter.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <chrono>
 #include <memory>
@@ -281,8 +286,17 @@ int requestedPiece(vtkInformationVector* outputVector)
 {
   vtkInformation* info = outputVector->GetInformationObject(0);
   return info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
+           ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+           : 0;
+}
+
+/// The number of pieces the output is asked in (1 built in).
+int requestedPieces(vtkInformationVector* outputVector)
+{
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  return info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+           ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+           : 1;
 }
 } // namespace
 
@@ -297,13 +311,42 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
   }
   int extent[6];
   in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  if (requestedPiece(outputVector) > 0)
+  const int piece = requestedPiece(outputVector), pieces = requestedPieces(outputVector);
+  if (this->Distributed(piece, pieces))
+  {
+    // This rank's piece grown by the ghost margin on its shared faces (vtouch::GhostMarginRule).
+    double spacing[3] = { 1.0, 1.0, 1.0 };
+    if (in->Has(vtkDataObject::SPACING()))
+    {
+      in->Get(vtkDataObject::SPACING(), spacing);
+    }
+    vtouch::VoxelExtent6 whole;
+    std::copy(extent, extent + 6, whole.begin());
+    const vtouch::VoxelExtent6 grown = vtouch::grownExtent(
+      vtouch::DistributedCenterline::pieceExtents(whole, pieces)[static_cast<std::size_t>(piece)],
+      whole,
+      this->GetGhostMarginVoxels(spacing));
+    std::copy(grown.begin(), grown.end(), extent);
+    // As one piece of that extent: a reader that splits by piece number (ParaView's XML
+    // readers split their own way) would intersect its split with the extent.
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
+  else if (piece > 0)
   {
     const int none[6] = { 0, -1, 0, -1, 0, -1 };
     std::copy(none, none + 6, extent);
   }
   else
   {
+    if (pieces > 1 && !this->WarnedUndistributed)
+    {
+      this->WarnedUndistributed = true; // once per filter: every update asks again
+      vtkWarningMacro("VesselCenterline: the raw seeded mode (AutomaticIntensityRange with "
+                      "UseSeedPoint) is not distributed yet; the first rank codes the whole "
+                      "volume.");
+    }
     // The whole volume as one piece: readers that split by piece number read it all.
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
@@ -319,18 +362,37 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (this->Distributed(requestedPiece(outputVector), requestedPieces(outputVector)))
+  {
+    return this->RequestDistributed(inputVector, output);
+  }
   if (output && requestedPiece(outputVector) > 0)
   {
     output->Initialize(); // the first piece codes the whole volume (RequestUpdateExtent)
     return 1;
   }
+  return this->ExtractVolume(inputVector, input, output);
+}
+
+void vtkVesselTouchCenterlineFilter::Complain(const std::string& message)
+{
+  if (!this->QuietErrors)
+  {
+    vtkErrorMacro(<< message);
+  }
+}
+
+int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVector,
+  vtkImageData* input,
+  vtkPolyData* output)
+{
   this->DownsampleFactorUsed = 0;
   this->LastRunKey.clear();
   this->LastRunPrecomputed = false;
   this->LastRunCancelled = false;
   if (!input || !output)
   {
-    vtkErrorMacro("VesselCenterline needs a vtkImageData input.");
+    this->Complain("VesselCenterline needs a vtkImageData input.");
     return 1;
   }
   output->Initialize();
@@ -355,7 +417,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     text << "VesselCenterline needs a 3D volume; the input is " << dims[0] << " x " << dims[1]
          << " x " << dims[2] << ".";
     fail(text.str());
-    vtkErrorMacro(<< this->ExtractionMessage);
+    this->Complain(this->ExtractionMessage);
     return 1;
   }
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
@@ -366,20 +428,20 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   if (!scalars)
   {
     fail("The input has no point scalars to threshold.");
-    vtkErrorMacro(<< this->ExtractionMessage);
+    this->Complain(this->ExtractionMessage);
     return 1;
   }
   if (scalars->GetNumberOfComponents() != 1)
   {
     fail("The input scalars have " + std::to_string(scalars->GetNumberOfComponents()) +
          " components; VesselCenterline needs one.");
-    vtkErrorMacro(<< this->ExtractionMessage);
+    this->Complain(this->ExtractionMessage);
     return 1;
   }
   if (this->DownsampleFactor < 0)
   {
-    vtkErrorMacro("DownsampleFactor must be 0 (automatic) or a factor >= 1, got "
-                  << this->DownsampleFactor << ".");
+    this->Complain("DownsampleFactor must be 0 (automatic) or a factor >= 1, got " +
+                   std::to_string(this->DownsampleFactor) + ".");
     return 1;
   }
   this->LastRunKey = this->RunKey(input, scalars);
@@ -424,7 +486,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     catch (const std::exception& e) // ITK exceptions are std::exceptions too
     {
       fail(std::string("VesselCenterline: ") + e.what());
-      vtkErrorMacro(<< this->ExtractionMessage);
+      this->Complain(this->ExtractionMessage);
       return 1;
     }
     candidateSeconds = region.stageSeconds;
@@ -433,7 +495,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     if (!region.ok)
     {
       fail(region.message);
-      vtkErrorMacro(<< region.message);
+      this->Complain(region.message);
       return 1;
     }
     if (!region.binary)
@@ -569,12 +631,127 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   catch (const itk::ExceptionObject& e)
   {
     fail(std::string("VesselCenterline: ") + e.GetDescription());
-    vtkErrorMacro(<< this->ExtractionMessage);
+    this->Complain(this->ExtractionMessage);
   }
   catch (const std::bad_alloc&)
   {
     fail("VesselCenterline: not enough memory for this volume.");
-    vtkErrorMacro(<< this->ExtractionMessage);
+    this->Complain(this->ExtractionMessage);
+  }
+  return 1;
+}
+
+bool vtkVesselTouchCenterlineFilter::Distributed(int piece, int pieces) const
+{
+  // The raw seeded mode needs the range and the grown region across ranks: not yet (departure
+  // in Docs/CLIENT-SERVER.md); it keeps the whole volume on the first rank.
+  const bool seededRaw = this->AutomaticIntensityRange && this->UseSeedPoint;
+  return !seededRaw && vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
+}
+
+int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]) const
+{
+  const double largestSpacing = std::max({ spacing[0], spacing[1], spacing[2] });
+  vtouch::GhostMarginRule rule;
+  // Automatic: 10 voxels, the thickest vessel the project's phantoms and CTA volumes hold at
+  // their resolution (project rule; set LargestVesselRadius for thicker ones).
+  rule.largestRadius_mm =
+    this->LargestVesselRadius > 0.0 ? this->LargestVesselRadius : 10.0 * largestSpacing;
+  rule.minimumBranchLength = this->MinimumBranchLength;
+  rule.useVesselness = this->UseVesselness;
+  rule.vesselnessSigmaMaximum_mm = this->VesselnessSigmaMaximum;
+  return rule.voxels({ spacing[0], spacing[1], spacing[2] });
+}
+
+int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** inputVector,
+  vtkPolyData* output)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkMultiProcessController* controller = vtouch::DistributedCenterline::controllerFor(
+    vtkMultiProcessController::GetGlobalController()->GetLocalProcessId(),
+    vtkMultiProcessController::GetGlobalController()->GetNumberOfProcesses());
+  // This piece's own run; its errors (a piece without vessels is normal) wait for the stitch.
+  vtkNew<vtkPolyData> own;
+  vtouch::QSkeleton skeleton;
+  vtouch::PieceReport report;
+  vtouch::IndexFrame frame;
+  vtouch::VoxelExtent6 whole{ 0, -1, 0, -1, 0, -1 };
+  double largestSpacing = 1.0;
+  if (input)
+  {
+    this->QuietErrors = true;
+    this->ExtractVolume(inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), own);
+    this->QuietErrors = false;
+    std::string error;
+    if (own->GetNumberOfLines() > 0 && !vtouch::PolyDataToQSkeleton().convert(own, skeleton, error))
+    {
+      this->ExtractionMessage = "VesselCenterline: this piece's skeleton is unreadable: " + error;
+      skeleton = vtouch::QSkeleton{};
+    }
+    report.rangeLower = this->IntensityRangeUsed[0];
+    report.rangeUpper = this->IntensityRangeUsed[1];
+    frame = vtouch::DistributedCenterline::indexFrame(input);
+    largestSpacing = std::max({ frame.spacing_mm[0], frame.spacing_mm[1], frame.spacing_mm[2] });
+    input->GetExtent(report.inputExtent.data());
+    if (vtkDataArray* bytes = input->GetFieldData()->GetArray("ReaderVoxelBytesRead"))
+    {
+      report.readerBytes = bytes->GetComponent(0, 0);
+    }
+    vtkInformation* in = inputVector[0]->GetInformationObject(0);
+    in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
+  }
+  // Collective: every rank gets here once per run, whatever its piece gave.
+  vtouch::DistributedCenterline::Result result;
+  output->Initialize();
+  if (!vtouch::DistributedCenterline::gatherAndStitch(
+        controller, skeleton, frame, whole, report, 2.0 * largestSpacing, result))
+  {
+    return 1; // not the first rank: an empty piece of the output
+  }
+  fillOutput(result.skeleton, output);
+  vtkFieldData* fd = output->GetFieldData();
+  // The first rank's run data (range, factor, stage times, ...), then the stitch's.
+  vtkFieldData* ownFd = own->GetFieldData();
+  for (int i = 0; i < ownFd->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* a = ownFd->GetAbstractArray(i);
+    if (a && a->GetName() && !fd->GetAbstractArray(a->GetName()))
+    {
+      fd->AddArray(a);
+    }
+  }
+  std::string message;
+  if (result.skeleton.empty())
+  {
+    message = this->ExtractionMessage.empty()
+                ? std::string("VesselCenterline: no piece of the volume gave a skeleton.")
+                : this->ExtractionMessage;
+  }
+  if (!result.error.empty())
+  {
+    message = "VesselCenterline: " + result.error;
+  }
+  this->ExtractionMessage = message;
+  vtouch::addRangeFieldData(fd,
+    this->IntensityRangeUsed[0],
+    this->IntensityRangeUsed[1],
+    this->AutomaticIntensityRange,
+    message);
+  const bool rangesDiffer = vtouch::DistributedCenterline::addReports(
+    fd, result, this->GetGhostMarginVoxels(frame.spacing_mm.data()), this->IntensityRangeUsed);
+  if (rangesDiffer)
+  {
+    vtkWarningMacro("VesselCenterline (distributed): the ranks estimated different intensity "
+                    "ranges on their pieces; set AutomaticIntensityRange off and the thresholds "
+                    "for one range everywhere.");
+  }
+  for (const std::string& note : result.stitch.notes)
+  {
+    vtkWarningMacro(<< "VesselCenterline (distributed): " << note);
+  }
+  if (!message.empty())
+  {
+    vtkErrorMacro(<< message);
   }
   return 1;
 }
@@ -612,7 +789,7 @@ std::string vtkVesselTouchCenterlineFilter::RunKey(vtkImageData* input, vtkDataA
       << this->SmoothingWindow << " downsample " << this->DownsampleFactor << " vesselness "
       << this->UseVesselness << " " << this->VesselnessSigmaMinimum << " "
       << this->VesselnessSigmaMaximum << " " << this->VesselnessNumberOfScales << " "
-      << this->VesselnessThreshold;
+      << this->VesselnessThreshold << " largest radius " << this->LargestVesselRadius;
   return key.str();
 }
 
@@ -675,6 +852,7 @@ void vtkVesselTouchCenterlineFilter::CopyParameters(vtkVesselTouchCenterlineFilt
   this->VesselnessSigmaMaximum = other->VesselnessSigmaMaximum;
   this->VesselnessNumberOfScales = other->VesselnessNumberOfScales;
   this->VesselnessThreshold = other->VesselnessThreshold;
+  this->LargestVesselRadius = other->LargestVesselRadius;
   if (vtkInformation* array = other->GetInputArrayInformation(0))
   {
     this->GetInputArrayInformation(0)->Copy(array);
@@ -696,4 +874,5 @@ void vtkVesselTouchCenterlineFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SmoothingWindow: " << this->SmoothingWindow << "\n";
   os << indent << "DownsampleFactor: " << this->DownsampleFactor << "\n";
   os << indent << "UseVesselness: " << this->UseVesselness << "\n";
+  os << indent << "LargestVesselRadius: " << this->LargestVesselRadius << "\n";
 }

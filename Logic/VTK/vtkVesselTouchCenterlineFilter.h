@@ -102,6 +102,14 @@ public:
   vtkSetMacro(VesselnessThreshold, double);
   vtkGetMacro(VesselnessThreshold, double);
 
+  /// Distributed extraction (pvserver under MPI, issue 19 item 2): the largest vessel radius, mm,
+  /// the ghost margin around each rank's piece must cover (vtouch::GhostMarginRule). 0 (default)
+  /// = automatic: 10 voxels of the largest spacing. Not used by a one-process run.
+  vtkSetMacro(LargestVesselRadius, double);
+  vtkGetMacro(LargestVesselRadius, double);
+  /// The ghost margin, voxels, for an input of this spacing (the rule with these parameters).
+  int GetGhostMarginVoxels(const double spacing[3]) const;
+
   /// Copies every parameter above and the input array selection of `other` (not its input).
   void CopyParameters(vtkVesselTouchCenterlineFilter* other);
   /// The last run's key: the input's scalars (the array and its modification time), the input's
@@ -130,10 +138,11 @@ protected:
   ~vtkVesselTouchCenterlineFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  /// In a parallel pipeline (pvserver under MPI) the first piece asks for the whole volume and
-  /// the others for none: the Q-skeleton is coded whole on one rank, never as separate pieces
-  /// whose paths would break at every piece boundary. Distributed coding with ghost layers and
-  /// stitching (issue 19, item 2) replaces this; until then memory does not fall with ranks.
+  /// In a parallel pipeline (pvserver under MPI) each rank asks for its own piece (the
+  /// executive's split) grown by the ghost margin on every face shared with another piece; its
+  /// skeleton is clipped to the piece and the pieces are stitched on the first rank
+  /// (RequestDistributed). The raw seeded mode (AutomaticIntensityRange with UseSeedPoint) is not
+  /// distributed yet: the first piece asks for the whole volume and the others for none.
   int RequestUpdateExtent(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
@@ -145,6 +154,16 @@ private:
   vtkVesselTouchCenterlineFilter(const vtkVesselTouchCenterlineFilter&) = delete;
   void operator=(const vtkVesselTouchCenterlineFilter&) = delete;
 
+  /// The single-process extraction of `input` into `output` (the whole run of a one-process
+  /// pipeline, one piece's run of a distributed one).
+  int ExtractVolume(vtkInformationVector** inputVector, vtkImageData* input, vtkPolyData* output);
+  /// One rank's part of the distributed extraction: its piece, clipped, gathered and stitched on
+  /// the first rank (the others output nothing: the delivery's ReductionFilter appends).
+  int RequestDistributed(vtkInformationVector** inputVector, vtkPolyData* output);
+  /// Whether this run is piece `piece` of a distributed extraction over `pieces` ranks.
+  bool Distributed(int piece, int pieces) const;
+  /// vtkErrorMacro, unless a distributed piece's run defers its errors to the stitched result.
+  void Complain(const std::string& message);
   std::string RunKey(vtkImageData* input, vtkDataArray* scalars) const;
   /// Whether the run is to stop (cancel flag or AbortExecute).
   bool CancelRequested();
@@ -168,6 +187,9 @@ private:
   double VesselnessSigmaMaximum = 4.0;
   int VesselnessNumberOfScales = 4;
   double VesselnessThreshold = 0.05;
+  double LargestVesselRadius = 0.0;
+  bool QuietErrors = false;
+  bool WarnedUndistributed = false;
   std::string LastRunKey;
   vtkSmartPointer<vtkPolyData> PrecomputedOutput;
   std::string PrecomputedKey;

@@ -10,8 +10,8 @@ pvpython connects and loads the plugin on both sides from the same file, and:
   tree, whose vessels cross the piece boundary);
 - VesselCenterline runs on the server; the skeleton delivered to the client (vesseltouch/
   delivery.py: gathered on rank 0, moved to the client) has the built-in run's paths and, within
-  0.1 voxel, its points (the filter codes the whole volume on the first rank until the
-  distributed extraction of item 2 lands: vtkVesselTouchCenterlineFilter::RequestUpdateExtent);
+  0.1 voxel, its points (each rank codes its piece grown by the ghost margin, which on this
+  small tree covers the volume; ClientServer.DistributedExtraction tests pieces that do not);
 - vesseltouch.logic() returns a session that lives in the client process only (its proxy's
   location is the client) and binds to that skeleton;
 - a scripted trace (simulated device, the hand sweeping path 0, RunOffline) runs in the client:

@@ -1,0 +1,313 @@
+#include "vtouchSkeletonStitcher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <tuple>
+
+namespace vtouch
+{
+
+namespace
+{
+/// End e of the fragment list: fragment e / 2, head when e is even, tail when odd.
+const FragmentEnd& endOf(const std::vector<SkeletonFragment>& f, std::size_t e)
+{
+  return e % 2 == 0 ? f[e / 2].head : f[e / 2].tail;
+}
+
+const SkeletonPoint& endPoint(const std::vector<SkeletonFragment>& f, std::size_t e)
+{
+  const SkeletonFragment& fragment = f[e / 2];
+  return e % 2 == 0 ? fragment.points.front() : fragment.points.back();
+}
+
+std::string describe(const char* what, const Vec3& p, int piece)
+{
+  std::ostringstream text;
+  text.precision(4);
+  text << what << " of piece " << piece << " at (" << p.x << ", " << p.y << ", " << p.z << ") mm";
+  return text.str();
+}
+
+/// Pairs the cut ends: partner[e] is the end joined to e, or -1.
+std::vector<long> matchCutEnds(const std::vector<SkeletonFragment>& f,
+  double tolerance_mm,
+  StitchReport& report)
+{
+  const std::size_t ends = 2 * f.size();
+  std::vector<long> partner(ends, -1);
+  std::vector<std::size_t> cuts;
+  for (std::size_t e = 0; e < ends; ++e)
+  {
+    if (endOf(f, e).kind == FragmentEnd::Kind::Cut)
+    {
+      cuts.push_back(e);
+    }
+  }
+  // (pass, consistency, distance, a, b): across pieces first, named neighbours first.
+  using Candidate = std::tuple<int, int, double, std::size_t, std::size_t>;
+  std::vector<Candidate> candidates;
+  for (std::size_t i = 0; i < cuts.size(); ++i)
+  {
+    for (std::size_t k = i + 1; k < cuts.size(); ++k)
+    {
+      const std::size_t a = cuts[i], b = cuts[k];
+      if (a / 2 == b / 2)
+      {
+        continue; // a fragment's own two ends: never a loop of one short excursion
+      }
+      const FragmentEnd& ea = endOf(f, a);
+      const FragmentEnd& eb = endOf(f, b);
+      const double d = (ea.position_World_mm - eb.position_World_mm).norm();
+      const double reach =
+        std::max(tolerance_mm, 0.5 * std::min(endPoint(f, a).radius_mm, endPoint(f, b).radius_mm));
+      if (d > reach)
+      {
+        continue;
+      }
+      const int pa = f[a / 2].piece, pb = f[b / 2].piece;
+      const int pass = pa != pb ? 0 : 1;
+      const int consistent = (ea.neighbourPiece == pb && eb.neighbourPiece == pa) ? 0 : 1;
+      candidates.emplace_back(pass, consistent, d, a, b);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  for (const Candidate& c : candidates)
+  {
+    const std::size_t a = std::get<3>(c), b = std::get<4>(c);
+    if (partner[a] < 0 && partner[b] < 0)
+    {
+      partner[a] = static_cast<long>(b);
+      partner[b] = static_cast<long>(a);
+      ++report.cutEndsJoined;
+    }
+  }
+  for (std::size_t e : cuts)
+  {
+    if (partner[e] < 0)
+    {
+      ++report.cutEndsUnmatched;
+      report.notes.push_back(
+        describe("unmatched cut end", endOf(f, e).position_World_mm, f[e / 2].piece));
+    }
+  }
+  return partner;
+}
+
+/// Appends fragment `g`'s points to `path`, reversed (tangents negated) when `reversed`.
+void appendPoints(SkeletonPath& path, const SkeletonFragment& g, bool reversed)
+{
+  if (!reversed)
+  {
+    path.points.insert(path.points.end(), g.points.begin(), g.points.end());
+    return;
+  }
+  for (auto it = g.points.rbegin(); it != g.points.rend(); ++it)
+  {
+    SkeletonPoint p = *it;
+    p.tangent_World = p.tangent_World * -1.0;
+    path.points.push_back(p);
+  }
+}
+
+/// A stitched path's free or attached ends, before the junctions are resolved.
+struct ChainEnds
+{
+  FragmentEnd head, tail;
+  bool closed = false;
+};
+
+/// Follows matched cut ends from end `start` (an end of fragment start / 2 that the chain begins
+/// at); marks the fragments used.
+ChainEnds walkChain(const std::vector<SkeletonFragment>& f,
+  const std::vector<long>& partner,
+  std::size_t start,
+  std::vector<char>& used,
+  SkeletonPath& path)
+{
+  ChainEnds ends;
+  ends.head = endOf(f, start);
+  std::size_t entry = start;
+  while (true)
+  {
+    const std::size_t fragment = entry / 2;
+    used[fragment] = 1;
+    const bool reversed = entry % 2 == 1; // entered at its tail
+    appendPoints(path, f[fragment], reversed);
+    const std::size_t exit = reversed ? 2 * fragment : 2 * fragment + 1;
+    const long next = partner[exit];
+    if (next < 0)
+    {
+      ends.tail = endOf(f, exit);
+      return ends;
+    }
+    if (static_cast<std::size_t>(next) == start)
+    {
+      ends.closed = true; // back where the chain began: a loop
+      return ends;
+    }
+    entry = static_cast<std::size_t>(next);
+  }
+}
+
+/// The nearest point of `s` to `p` but path `self`'s points within 2 of index `selfPoint`.
+bool nearestPoint(const QSkeleton& s,
+  const Vec3& p,
+  int self,
+  long selfPoint,
+  int& path,
+  int& point,
+  double& d)
+{
+  d = std::numeric_limits<double>::infinity();
+  for (const SkeletonPath& candidate : s.paths)
+  {
+    for (std::size_t i = 0; i < candidate.points.size(); ++i)
+    {
+      if (candidate.id == self && std::labs(static_cast<long>(i) - selfPoint) <= 2)
+      {
+        continue;
+      }
+      const double di = (candidate.points[i].position_World_mm - p).norm();
+      if (di < d)
+      {
+        d = di;
+        path = candidate.id;
+        point = static_cast<int>(i);
+      }
+    }
+  }
+  return std::isfinite(d);
+}
+/// Counts the points labelled Bifurcation that no junction of `s` is near (a lost branch).
+void reportLostBranches(const QSkeleton& s, double tolerance_mm, StitchReport& report)
+{
+  std::vector<Vec3> junctionPoints;
+  for (const Junction& j : s.junctions)
+  {
+    junctionPoints.push_back(s.paths[static_cast<std::size_t>(j.parentPath)]
+                               .points[static_cast<std::size_t>(j.parentPoint)]
+                               .position_World_mm);
+  }
+  for (const SkeletonPath& path : s.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      if (q.label != PointLabel::Bifurcation)
+      {
+        continue;
+      }
+      const double reach = std::max(tolerance_mm, q.radius_mm);
+      const bool near = std::any_of(junctionPoints.begin(),
+        junctionPoints.end(),
+        [&](const Vec3& x) { return (x - q.position_World_mm).norm() <= reach; });
+      if (!near)
+      {
+        ++report.bifurcationsWithoutBranch;
+        report.notes.push_back(describe("bifurcation without its branch", q.position_World_mm, -1));
+      }
+    }
+  }
+}
+} // namespace
+
+QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragments,
+  StitchReport& report) const
+{
+  report = StitchReport{};
+  std::vector<SkeletonFragment> f;
+  for (const SkeletonFragment& fragment : fragments)
+  {
+    if (!fragment.points.empty())
+    {
+      f.push_back(fragment);
+    }
+  }
+  const std::vector<long> partner = matchCutEnds(f, joinTolerance_mm, report);
+  QSkeleton s;
+  std::vector<ChainEnds> chainEnds;
+  std::vector<char> used(f.size(), 0);
+  const auto addChain = [&](std::size_t start)
+  {
+    SkeletonPath path;
+    path.id = static_cast<int>(s.paths.size());
+    chainEnds.push_back(walkChain(f, partner, start, used, path));
+    s.paths.push_back(std::move(path));
+  };
+  // Open chains first, from every end that is not joined; then what is left are loops.
+  for (std::size_t e = 0; e < 2 * f.size(); ++e)
+  {
+    if (!used[e / 2] && partner[e] < 0)
+    {
+      addChain(e);
+    }
+  }
+  for (std::size_t g = 0; g < f.size(); ++g)
+  {
+    if (!used[g])
+    {
+      addChain(2 * g);
+    }
+  }
+  // Junctions: attached ends by their parent point's position; loops onto their own point 0.
+  for (std::size_t i = 0; i < s.paths.size(); ++i)
+  {
+    SkeletonPath& path = s.paths[i];
+    const ChainEnds& ends = chainEnds[i];
+    if (ends.closed)
+    {
+      Junction j;
+      j.childPath = path.id;
+      j.childEnd = Junction::End::Tail;
+      j.parentPath = path.id;
+      j.parentPoint = 0;
+      path.tail.junction = static_cast<int>(s.junctions.size());
+      s.junctions.push_back(j);
+      ++report.loopsClosed;
+      continue;
+    }
+    for (const Junction::End which : { Junction::End::Head, Junction::End::Tail })
+    {
+      const FragmentEnd& end = which == Junction::End::Head ? ends.head : ends.tail;
+      const long index =
+        which == Junction::End::Head ? 0 : static_cast<long>(path.points.size()) - 1;
+      SkeletonPoint& q = path.points[static_cast<std::size_t>(index)];
+      if (end.kind == FragmentEnd::Kind::Cut)
+      {
+        q.label = PointLabel::EndPoint; // unmatched: reported above
+        continue;
+      }
+      if (end.kind != FragmentEnd::Kind::Attached)
+      {
+        continue;
+      }
+      int parentPath = -1, parentPoint = -1;
+      double d = 0.0;
+      const bool found =
+        nearestPoint(s, end.position_World_mm, path.id, index, parentPath, parentPoint, d);
+      if (!found || d > std::max(joinTolerance_mm, 0.5 * q.radius_mm))
+      {
+        ++report.attachmentsUnresolved;
+        report.notes.push_back(describe("unresolved attached end", q.position_World_mm, -1));
+        q.label = PointLabel::EndPoint;
+        continue;
+      }
+      Junction j;
+      j.childPath = path.id;
+      j.childEnd = which;
+      j.parentPath = parentPath;
+      j.parentPoint = parentPoint;
+      (which == Junction::End::Head ? path.head : path.tail).junction =
+        static_cast<int>(s.junctions.size());
+      s.junctions.push_back(j);
+      ++report.attachmentsResolved;
+    }
+  }
+  reportLostBranches(s, joinTolerance_mm, report);
+  return s;
+}
+
+} // namespace vtouch

@@ -1,0 +1,77 @@
+// The distributed extraction's collective step (issue 19, item 2): every rank's clipped skeleton
+// goes to the first rank, which stitches them (vtouch::SkeletonStitcher). Not a wrapped class:
+// the filter's private helper, built into the VesselTouch::Logic module.
+#pragma once
+
+#include "vtouchPieceOwnership.h"
+#include "vtouchQSkeleton.h"
+#include "vtouchSkeletonStitcher.h"
+
+#include <string>
+#include <vector>
+
+#include "vtkSmartPointer.h" // for pieceFromIndexZero
+
+class vtkFieldData;
+class vtkImageData;
+class vtkMultiProcessController;
+
+namespace vtouch
+{
+
+/// What one rank read and used, reported beside its fragments.
+struct PieceReport
+{
+  VoxelExtent6 inputExtent{ 0, -1, 0, -1, 0, -1 }; ///< the extent the rank's input holds
+  double readerBytes = -1.0; ///< the reader's ReaderVoxelBytesRead (-1: not a VesselTouch reader)
+  double peakResident_kiB = 0.0; ///< the rank's peak resident set (getrusage), KiB
+  double fragments = 0.0;        ///< fragments the rank kept
+  double rangeLower = 0.0;       ///< the intensity range the rank's run used
+  double rangeUpper = 0.0;
+};
+
+class DistributedCenterline
+{
+public:
+  /// The global controller when this run is piece `piece` of `pieces` > 1 on a controller with
+  /// that many processes, this process being that piece; else null (one process: built in).
+  static vtkMultiProcessController* controllerFor(int piece, int pieces);
+  /// The executive's split of `whole` into `pieces` (vtkExtentTranslator, block mode, by cells:
+  /// neighbouring pieces share a face layer), the split the readers use.
+  static std::vector<VoxelExtent6> pieceExtents(const VoxelExtent6& whole, int pieces);
+  /// This process's peak resident set, KiB.
+  static double peakResidentKiB();
+  /// The world <-> index map of `image`, index 0 at its origin (not at its extent's start).
+  static IndexFrame indexFrame(vtkImageData* image);
+  /// `piece` (an extent that need not start at 0) as an image whose extent starts at 0 and whose
+  /// origin is the world position of its first voxel: the coder indexes voxels from 0 (the
+  /// point and field data arrays are shared, not copied).
+  static vtkSmartPointer<vtkImageData> pieceFromIndexZero(vtkImageData* piece);
+
+  struct Result
+  {
+    QSkeleton skeleton;              ///< the stitched skeleton (first rank only)
+    StitchReport stitch;             ///< what stitching did (first rank only)
+    std::vector<PieceReport> pieces; ///< every rank's report (first rank only)
+    std::string error;               ///< a rank's fragments could not be read (first rank)
+  };
+  /// Collective (every rank calls it once per run): clips `own` (this piece's skeleton, coded on
+  /// its grown extent) to the piece's owned extent, gathers the fragments and reports on the
+  /// first rank and stitches them there. Returns true on the first rank.
+  static bool gatherAndStitch(vtkMultiProcessController* controller,
+    const QSkeleton& own,
+    const IndexFrame& frame,
+    const VoxelExtent6& whole,
+    PieceReport report,
+    double joinTolerance_mm,
+    Result& result);
+  /// The stitch's and the ranks' reports as field data of the stitched output (the arrays
+  /// DistributedPieces, GhostMarginVoxels, Stitch*, Piece*). Returns whether a rank that found
+  /// vessels used another intensity range than `rangeUsed` (also PieceIntensityRangesDiffer).
+  static bool addReports(vtkFieldData* fd,
+    const Result& result,
+    int ghostMarginVoxels,
+    const double rangeUsed[2]);
+};
+
+} // namespace vtouch

@@ -1,0 +1,347 @@
+// The stitcher joins what the pieces of a distributed volume kept (issue 19, item 2): skeletons
+// in index = world coordinates (1 mm voxels), clipped per piece by SkeletonClipper, stitched,
+// then compared with the skeleton before the split: same topology, the same points.
+#include "vtouchSkeletonClipper.h"
+#include "vtouchSkeletonStitcher.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+namespace
+{
+using namespace vtouch;
+
+SkeletonPoint point(double x, double y, double z, double radius_mm = 1.0)
+{
+  SkeletonPoint p;
+  p.position_World_mm = { x, y, z };
+  p.radius_mm = radius_mm;
+  return p;
+}
+
+SkeletonPath path(int id, std::vector<SkeletonPoint> points)
+{
+  SkeletonPath p;
+  p.id = id;
+  p.points = std::move(points);
+  p.points.front().label = PointLabel::EndPoint;
+  p.points.back().label = PointLabel::EndPoint;
+  return p;
+}
+
+/// Attaches `child`'s `end` to `parent`'s point.
+void attach(QSkeleton& s, int child, Junction::End end, int parent, int parentPoint)
+{
+  Junction j;
+  j.childPath = child;
+  j.childEnd = end;
+  j.parentPath = parent;
+  j.parentPoint = parentPoint;
+  SkeletonPath& c = s.paths[static_cast<std::size_t>(child)];
+  (end == Junction::End::Head ? c.head : c.tail).junction = static_cast<int>(s.junctions.size());
+  SkeletonPoint& q = end == Junction::End::Head ? c.points.front() : c.points.back();
+  q.label = PointLabel::Bifurcation;
+  q.position_World_mm = s.paths[static_cast<std::size_t>(parent)]
+                          .points[static_cast<std::size_t>(parentPoint)]
+                          .position_World_mm;
+  s.junctions.push_back(j);
+}
+
+/// Clips `perPiece[r]` (piece r's own skeleton) with piece r's ownership and stitches them all.
+QSkeleton clipAndStitch(const std::vector<QSkeleton>& perPiece,
+  const PieceOwnership& ownership,
+  StitchReport& report)
+{
+  std::vector<SkeletonFragment> all;
+  for (std::size_t r = 0; r < perPiece.size(); ++r)
+  {
+    const SkeletonClipper clipper(ownership, IndexFrame{}, static_cast<int>(r));
+    for (SkeletonFragment& f : clipper.clip(perPiece[r]))
+    {
+      all.push_back(std::move(f));
+    }
+  }
+  SkeletonStitcher stitcher;
+  stitcher.joinTolerance_mm = 1.5;
+  return stitcher.stitch(all, report);
+}
+
+/// Independent cycles of the network: junctions - paths + connected parts (each path is a
+/// chain, each junction one more edge between two paths' points).
+int cycleRank(const QSkeleton& s)
+{
+  std::vector<int> parent(s.paths.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int a)
+  {
+    while (parent[static_cast<std::size_t>(a)] != a)
+    {
+      a = parent[static_cast<std::size_t>(a)];
+    }
+    return a;
+  };
+  for (const Junction& j : s.junctions)
+  {
+    parent[static_cast<std::size_t>(find(j.childPath))] = find(j.parentPath);
+  }
+  int parts = 0;
+  for (std::size_t i = 0; i < s.paths.size(); ++i)
+  {
+    parts += find(static_cast<int>(i)) == static_cast<int>(i) ? 1 : 0;
+  }
+  return static_cast<int>(s.junctions.size()) - static_cast<int>(s.paths.size()) + parts;
+}
+
+/// Vessel ends: path ends neither attached nor the parent point of a junction (a ring's point 0).
+int freeEnds(const QSkeleton& s)
+{
+  const auto isParent = [&s](int path, int point)
+  {
+    for (const Junction& j : s.junctions)
+    {
+      if (j.parentPath == path && j.parentPoint == point)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  int n = 0;
+  for (const SkeletonPath& p : s.paths)
+  {
+    const int last = static_cast<int>(p.points.size()) - 1;
+    n += (p.head.junction < 0 && !isParent(p.id, 0)) ? 1 : 0;
+    n += (p.tail.junction < 0 && !isParent(p.id, last)) ? 1 : 0;
+  }
+  return n;
+}
+
+/// Every point of `a` has a point of `b` within `tolerance_mm`.
+bool allPointsNear(const QSkeleton& a, const QSkeleton& b, double tolerance_mm)
+{
+  for (const SkeletonPath& pa : a.paths)
+  {
+    for (const SkeletonPoint& p : pa.points)
+    {
+      double best = 1e300;
+      for (const SkeletonPath& pb : b.paths)
+      {
+        for (const SkeletonPoint& q : pb.points)
+        {
+          best = std::min(best, (p.position_World_mm - q.position_World_mm).norm());
+        }
+      }
+      if (best > tolerance_mm)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+const VoxelExtent6 kWhole{ 0, 20, 0, 20, 0, 10 };
+/// Two pieces split at x = 10 (the executive's split: the layer x = 10 is shared).
+PieceOwnership twoPieces()
+{
+  return PieceOwnership({ { 0, 10, 0, 20, 0, 10 }, { 10, 20, 0, 20, 0, 10 } }, kWhole);
+}
+
+TEST(SkeletonStitcher, APathCutByOneFaceComesBackWhole)
+{
+  QSkeleton whole;
+  std::vector<SkeletonPoint> points;
+  for (int i = 0; i < 19; ++i)
+  {
+    points.push_back(point(1.0 + i, 5.0 + 0.2 * std::sin(i), 5.0));
+  }
+  whole.paths.push_back(path(0, points));
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  ASSERT_EQ(s.paths.size(), 1u);
+  EXPECT_EQ(s.paths[0].points.size(), 19u);
+  EXPECT_EQ(report.cutEndsJoined, 1);
+  EXPECT_EQ(report.cutEndsUnmatched, 0);
+  EXPECT_EQ(freeEnds(s), 2);
+  EXPECT_TRUE(allPointsNear(s, whole, 1e-12) && allPointsNear(whole, s, 1e-12));
+  // Both ends are still free vessel ends, the join point ordinary.
+  EXPECT_EQ(s.paths[0].points.front().label, PointLabel::EndPoint);
+  EXPECT_EQ(s.paths[0].points[9].label, PointLabel::Ordinary);
+}
+
+TEST(SkeletonStitcher, AJunctionRightOnAFaceKeepsItsParentPoint)
+{
+  // A parent along x at y = 10 and a branch from its point on the face x = 10 into piece 0.
+  QSkeleton whole;
+  std::vector<SkeletonPoint> trunk, branch;
+  for (int i = 0; i < 19; ++i)
+  {
+    trunk.push_back(point(1.0 + i, 10.0, 5.0));
+  }
+  for (int i = 0; i < 8; ++i)
+  {
+    branch.push_back(point(10.0 - 0.7 * i, 10.0 + 0.7 * i, 5.0));
+  }
+  whole.paths.push_back(path(0, trunk));
+  whole.paths.push_back(path(1, branch));
+  attach(whole, 1, Junction::End::Head, 0, 9); // trunk point 9 is (10, 10, 5): on the face
+  ASSERT_EQ(whole.validate(), "");
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(s.paths.size(), 2u);
+  ASSERT_EQ(s.junctions.size(), 1u);
+  EXPECT_EQ(report.attachmentsResolved, 1);
+  EXPECT_EQ(report.cutEndsUnmatched, 0);
+  EXPECT_EQ(freeEnds(s), 3);
+  EXPECT_EQ(cycleRank(s), 0);
+  const Junction& j = s.junctions[0];
+  const Vec3 at = s.paths[static_cast<std::size_t>(j.parentPath)]
+                    .points[static_cast<std::size_t>(j.parentPoint)]
+                    .position_World_mm;
+  EXPECT_LT((at - Vec3{ 10.0, 10.0, 5.0 }).norm(), 1e-12);
+  EXPECT_EQ(s.pointCount(), whole.pointCount());
+  EXPECT_TRUE(allPointsNear(s, whole, 1e-12) && allPointsNear(whole, s, 1e-12));
+}
+
+/// A ring of radius 7 around (10, 10, 5), from angle a0 to a1 (radians), 1 point per ~0.7 mm.
+std::vector<SkeletonPoint> arc(double a0, double a1)
+{
+  std::vector<SkeletonPoint> points;
+  const int n = static_cast<int>(std::ceil(std::abs(a1 - a0) * 7.0 / 0.7));
+  for (int i = 0; i <= n; ++i)
+  {
+    const double a = a0 + (a1 - a0) * i / n;
+    points.push_back(point(10.0 + 7.0 * std::cos(a), 10.0 + 7.0 * std::sin(a), 5.0));
+  }
+  return points;
+}
+
+TEST(SkeletonStitcher, ALoopSpanningTwoPiecesClosesAgain)
+{
+  // Neither piece sees the whole ring (their grown extents reach x = 13 and x = 7): each codes
+  // an arc with two free ends in its ghost layer; the owned parts have two cut ends each.
+  const double pi = std::acos(-1.0);
+  QSkeleton left, right;
+  left.paths.push_back(path(0, arc(0.4 * pi, 1.6 * pi)));     // x <= ~12.2
+  right.paths.push_back(path(0, arc(-0.55 * pi, 0.55 * pi))); // x >= ~8.9
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ left, right }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  ASSERT_EQ(s.paths.size(), 1u);
+  EXPECT_EQ(report.loopsClosed, 1);
+  EXPECT_EQ(report.cutEndsJoined, 2);
+  EXPECT_EQ(report.cutEndsUnmatched, 0);
+  EXPECT_EQ(freeEnds(s), 0);
+  EXPECT_EQ(cycleRank(s), 1);
+  // Consecutive points stay neighbours all the way round (no jump at a join).
+  const std::vector<SkeletonPoint>& p = s.paths[0].points;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const SkeletonPoint& next = p[(i + 1) % p.size()];
+    EXPECT_LT((next.position_World_mm - p[i].position_World_mm).norm(), 1.5) << i;
+  }
+}
+
+TEST(SkeletonStitcher, ARingWhollySeenByOnePieceKeepsItsLoopJunction)
+{
+  // The ring as the coder writes it: one path whose tail attaches to its own point 0.
+  const double pi = std::acos(-1.0);
+  QSkeleton whole;
+  std::vector<SkeletonPoint> ring = arc(0.0, 2.0 * pi);
+  ring.pop_back(); // the last sample repeats point 0
+  whole.paths.push_back(path(0, ring));
+  attach(whole, 0, Junction::End::Tail, 0, 0);
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(cycleRank(s), 1);
+  EXPECT_EQ(s.pointCount(), whole.pointCount());
+  EXPECT_EQ(report.cutEndsUnmatched + report.attachmentsUnresolved, 0);
+}
+
+TEST(SkeletonStitcher, APathCrossingACornerOfFourPiecesComesBackWhole)
+{
+  const PieceOwnership four({ { 0, 10, 0, 10, 0, 10 },
+                              { 10, 20, 0, 10, 0, 10 },
+                              { 0, 10, 10, 20, 0, 10 },
+                              { 10, 20, 10, 20, 0, 10 } },
+    kWhole);
+  QSkeleton whole;
+  std::vector<SkeletonPoint> diagonal, nearCorner;
+  for (int i = 0; i < 17; ++i)
+  {
+    diagonal.push_back(point(2.0 + i, 2.0 + i, 5.0));    // (10, 10) exactly on the corner
+    nearCorner.push_back(point(2.0 + i, 18.3 - i, 3.0)); // across pieces 2 -> 0 / 3 -> 1
+  }
+  whole.paths.push_back(path(0, diagonal));
+  whole.paths.push_back(path(1, nearCorner));
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, whole, whole, whole }, four, report);
+  EXPECT_EQ(s.validate(), "");
+  ASSERT_EQ(s.paths.size(), 2u);
+  EXPECT_EQ(report.cutEndsUnmatched, 0);
+  EXPECT_EQ(freeEnds(s), 4);
+  EXPECT_EQ(s.pointCount(), whole.pointCount());
+  EXPECT_TRUE(allPointsNear(s, whole, 1e-12) && allPointsNear(whole, s, 1e-12));
+}
+
+TEST(SkeletonStitcher, UnmatchedCutEndsAreReportedAndBecomeFreeEnds)
+{
+  QSkeleton whole;
+  std::vector<SkeletonPoint> points;
+  for (int i = 0; i < 19; ++i)
+  {
+    points.push_back(point(1.0 + i, 5.0, 5.0));
+  }
+  whole.paths.push_back(path(0, points));
+  // Piece 1 found nothing there (its run failed, or saw the vessel elsewhere).
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, QSkeleton{} }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  ASSERT_EQ(s.paths.size(), 1u);
+  EXPECT_EQ(report.cutEndsUnmatched, 1);
+  ASSERT_EQ(report.notes.size(), 1u);
+  EXPECT_NE(report.notes[0].find("unmatched cut end of piece 0"), std::string::npos);
+  EXPECT_EQ(s.paths[0].points.back().label, PointLabel::EndPoint);
+  // Two far-apart cut ends of different pieces are not joined.
+  QSkeleton shifted;
+  std::vector<SkeletonPoint> far;
+  for (int i = 0; i < 19; ++i)
+  {
+    far.push_back(point(1.0 + i, 15.0, 5.0));
+  }
+  shifted.paths.push_back(path(0, far));
+  const QSkeleton t = clipAndStitch({ whole, shifted }, twoPieces(), report);
+  EXPECT_EQ(t.paths.size(), 2u);
+  EXPECT_EQ(report.cutEndsUnmatched, 2);
+  // A branch lost by both pieces (each placed it on the other's side): its bifurcation is named.
+  QSkeleton branched;
+  std::vector<SkeletonPoint> trunk, branch;
+  for (int i = 0; i < 19; ++i)
+  {
+    trunk.push_back(point(1.0 + i, 10.0, 5.0));
+  }
+  for (int i = 0; i < 6; ++i)
+  {
+    branch.push_back(point(5.0, 10.0 + i, 5.0));
+  }
+  branched.paths.push_back(path(0, trunk));
+  branched.paths.push_back(path(1, branch));
+  attach(branched, 1, Junction::End::Head, 0, 4);
+  branched.paths[0].points[4].label = PointLabel::Bifurcation;
+  QSkeleton trunkOnly = branched;
+  trunkOnly.paths.pop_back();
+  trunkOnly.junctions.clear();
+  clipAndStitch({ trunkOnly, trunkOnly }, twoPieces(), report);
+  EXPECT_EQ(report.bifurcationsWithoutBranch, 1);
+  clipAndStitch({ branched, branched }, twoPieces(), report);
+  EXPECT_EQ(report.bifurcationsWithoutBranch, 0);
+  // Nothing at all: an empty skeleton, no crash.
+  const QSkeleton empty = SkeletonStitcher().stitch({}, report);
+  EXPECT_TRUE(empty.empty());
+}
+} // namespace

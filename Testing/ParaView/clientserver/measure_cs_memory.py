@@ -1,0 +1,130 @@
+"""Peak memory per pvserver rank of VesselCenterline, 1 rank against N ranks (issue 19, item 2).
+
+    VESSELTOUCH_PLUGIN=<build>/lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so \\
+        pvpython Testing/ParaView/clientserver/measure_cs_memory.py --size 384 --ranks 1 2
+
+A tree phantom (radius fraction 0.02) is written as a raw float NRRD; for each rank count a
+pvserver starts on 127.0.0.1, reads it (VesselTouch's reader: each rank its own extent) and runs
+VesselCenterline (thresholded, LargestVesselRadius the phantom's radius). Printed per rank: the
+extent it read, the voxel bytes its reader read, its VmHWM from /proc after the run (the peak
+resident set of the process, ParaView's libraries included) and the filter's own getrusage peak.
+A measurement, not a test: nothing is asserted.
+"""
+
+import argparse
+import os
+import shutil
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.dirname(HERE)]
+from vtouch_pvserver import ParallelServer  # noqa: E402
+
+from paraview import servermanager as sm  # noqa: E402
+from paraview import simple  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+
+
+def write_nrrd(path, image):
+    dims = image.GetDimensions()
+    values = vtk_to_numpy(image.GetPointData().GetScalars()).astype("<f4")
+    with open(path, "wb") as f:
+        f.write(("NRRD0004\ntype: float\ndimension: 3\nsizes: %d %d %d\nspacings: 1 1 1\n"
+                 "encoding: raw\nendian: little\n\n" % dims).encode())
+        f.write(values.tobytes())
+
+
+def descendants_named(pid, name):
+    """The processes below `pid` (the mpiexec this script started) called `name`."""
+    children = {}
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open("/proc/%s/stat" % entry) as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            children.setdefault(int(fields[1]), []).append(int(entry))
+        except OSError:
+            continue
+    found, todo = [], [pid]
+    while todo:
+        p = todo.pop()
+        for c in children.get(p, []):
+            todo.append(c)
+            try:
+                with open("/proc/%d/comm" % c) as f:
+                    if f.read().strip() == name:
+                        found.append(c)
+            except OSError:
+                pass
+    return sorted(found)
+
+
+def vm_hwm_kib(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1])
+    return -1
+
+
+def measure(path, ranks, radius_mm):
+    server = ParallelServer(ranks=ranks)
+    server.start()
+    try:
+        simple.Connect("127.0.0.1", server.port)
+        plugin = os.environ["VESSELTOUCH_PLUGIN"]
+        simple.LoadPlugin(plugin, remote=True)
+        simple.LoadPlugin(plugin, remote=False)
+        volume = simple.OpenDataFile(path)
+        centerline = simple.VesselCenterline(Input=volume, AutomaticIntensityRange=0,
+                                             LowerThreshold=550.0, LargestVesselRadius=radius_mm)
+        centerline.UpdatePipeline()
+        data = sm.Fetch(centerline)
+        hwm = [vm_hwm_kib(p) for p in descendants_named(server.process.pid, "pvserver")]
+        fd = data.GetFieldData()
+
+        def values(name):
+            a = fd.GetArray(name)
+            return None if a is None else [a.GetTuple(i) for i in range(a.GetNumberOfTuples())]
+        print("ranks %d: %d paths, %d points; VmHWM per rank (MiB): %s"
+              % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(),
+                 ", ".join("%.0f" % (h / 1024.0) for h in hwm)))
+        if values("PieceInputExtents"):
+            for r, (e, b, p) in enumerate(zip(values("PieceInputExtents"),
+                                             values("PieceReaderVoxelBytesRead"),
+                                             values("PiecePeakResidentKiB"))):
+                print("  rank %d read extent %s: %.0f MiB of voxels; its run's peak %.0f MiB"
+                      % (r, [int(v) for v in e], b[0] / 2 ** 20, p[0] / 1024.0))
+            print("  ghost margin %d voxels; cut ends joined %d, unmatched %d"
+                  % (values("GhostMarginVoxels")[0][0], values("StitchCutEndsJoined")[0][0],
+                     values("StitchCutEndsUnmatched")[0][0]))
+        simple.Disconnect()
+    finally:
+        server.stop()
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--size", type=int, default=384)
+    parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    args = parser.parse_args()
+    folder = tempfile.mkdtemp(prefix="vtouch-cs-memory-")
+    try:
+        simple.LoadPlugin(os.environ["VESSELTOUCH_PLUGIN"], remote=False, ns=globals())
+        n = args.size
+        phantom = VesselPhantom(Dimensions=[n, n, n], RadiusFraction=0.02)  # noqa: F821
+        path = os.path.join(folder, "tree.nrrd")
+        write_nrrd(path, sm.Fetch(phantom))
+        simple.Delete(phantom)
+        simple.Disconnect()
+        print("tree phantom %d^3 float (%.0f MiB), radius %.1f voxels"
+              % (n, 4.0 * n ** 3 / 2 ** 20, 0.02 * n))
+        for ranks in args.ranks:
+            measure(path, ranks, 0.02 * n)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+main()

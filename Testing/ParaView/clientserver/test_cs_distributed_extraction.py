@@ -1,0 +1,173 @@
+"""Client/server integration test (issue 19, items 2 and 5): VesselCenterline distributed over a
+2-rank pvserver against the built-in run on the same volume.
+
+Run as ``pvpython test_cs_distributed_extraction.py`` with VESSELTOUCH_PLUGIN set, on a display
+(vtouch-xvfb-run). Phantoms whose vessels cross the piece boundary (the executive splits 128^3 at
+z = 63: a tree, a loop network, a ring wider than either rank's grown piece, a Y) are written as
+raw NRRD (read by VesselTouch's reader, which reports what it read) and extracted with the
+thresholded path (AutomaticIntensityRange off):
+- built in (one process): the reference, and the same run rooted elsewhere (a seed on the
+  reference's skeleton in the other piece) to measure how far the coder's own output moves when
+  only its root changes (each rank's piece has its own root);
+- on the 2-rank server: each rank reads its own piece grown by the ghost margin and nothing else
+  (the extents and bytes each rank reports), every cut end is matched, and the stitched skeleton
+  has the reference's topology (vessel ends, bifurcations of degree >= 3, independent loops; the
+  path count may differ: a single run splits a ring where its fronts met) and every point within
+  0.1 voxel of it, or within the root envelope + 0.1 voxel where a vessel is longer than a rank
+  sees (the ring: see Docs/CLIENT-SERVER.md).
+Exits non-zero on any failure.
+"""
+
+import os
+import shutil
+import sys
+import tempfile
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.dirname(HERE)]
+from vtouch_pvserver import run_connected  # noqa: E402
+from vtouch_skeleton_graph import farthest_point_voxels, graph  # noqa: E402
+from vtouch_testing import Check, plugin_path  # noqa: E402
+
+from paraview import servermanager as sm  # noqa: E402
+from paraview import simple  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator  # noqa: E402
+
+PLUGIN = plugin_path()
+CHECK = Check("client/server distributed extraction")
+check = CHECK.true
+N = 128
+RADIUS_FRACTION = 0.025  # radius 3.2 voxels: ghost margin 26 voxels, a piece reads 90 of 128
+# Shape, and whether each rank's grown piece holds every vessel it owns a part of whole (then the
+# ranks code what the single run codes: 0.1 voxel); the ring is wider than a grown piece, so
+# each rank codes an arc with a root of its own (the root envelope applies).
+CASES = {"tree": (5, True), "loop network": (6, True), "ring": (0, False), "Y": (4, True)}
+FILTER = dict(AutomaticIntensityRange=0, LowerThreshold=550.0,
+              LargestVesselRadius=RADIUS_FRACTION * N)
+
+
+def write_nrrd(path, image):
+    """`image` (1 mm voxels at the origin) as a raw little-endian float NRRD."""
+    dims = image.GetDimensions()
+    values = vtk_to_numpy(image.GetPointData().GetScalars()).astype("<f4")
+    with open(path, "wb") as f:
+        f.write(("NRRD0004\ntype: float\ndimension: 3\nsizes: %d %d %d\nspacings: 1 1 1\n"
+                 "encoding: raw\nendian: little\n\n" % dims).encode())
+        f.write(values.tobytes())
+
+
+def topology(g):
+    return {"ends": g["ends"], "bifurcations": len(g["bifurcations"]), "cycles": g["cycles"]}
+
+
+def builtin_references(folder):
+    """Per case: the built-in graph and the root envelope (voxels)."""
+    simple.LoadPlugin(PLUGIN, remote=False, ns=globals())
+    references = {}
+    for name, (shape, _) in CASES.items():
+        phantom = VesselPhantom(Dimensions=[N, N, N], RadiusFraction=RADIUS_FRACTION,  # noqa: F821
+                                Shape=shape)
+        path = os.path.join(folder, "%s.nrrd" % name.replace(" ", "_"))
+        write_nrrd(path, sm.Fetch(phantom))
+        volume = simple.OpenDataFile(path)
+        centerline = VesselCenterline(Input=volume, **FILTER)  # noqa: F821
+        centerline.UpdatePipeline()
+        reference = graph(sm.Fetch(centerline), 1.0)
+        # The same volume rooted elsewhere: at the reference's lowest and highest points and a
+        # third and two thirds along its points (the root envelope: the largest move; a root
+        # inside a vessel splits it there, so only the points are compared).
+        points = reference["points"]
+        envelope = 0.0
+        for k in (int(np.argmin(points[:, 2])), int(np.argmax(points[:, 2])), len(points) // 3,
+                  2 * len(points) // 3):
+            rerooted = VesselCenterline(Input=volume, UseSeedPoint=1,  # noqa: F821
+                                        SeedPoint=[float(x) for x in points[k]], **FILTER)
+            rerooted.UpdatePipeline()
+            other = graph(sm.Fetch(rerooted), 1.0)
+            simple.Delete(rerooted)
+            envelope = max(envelope, farthest_point_voxels(other["points"], points, 1.0),
+                           farthest_point_voxels(points, other["points"], 1.0))
+        print("%s built in: %d paths, %s; root envelope %.3f voxel"
+              % (name, reference["paths"], topology(reference), envelope))
+        check(reference["paths"] > 0, "%s: the built-in reference has paths" % name)
+        references[name] = (path, reference, envelope)
+        for proxy in (centerline, volume, phantom):
+            simple.Delete(proxy)
+    return references
+
+
+def field(data, name):
+    a = data.GetFieldData().GetArray(name)
+    return None if a is None else [a.GetTuple(i) for i in range(a.GetNumberOfTuples())]
+
+
+def check_pieces(name, data):
+    """Each rank read its own piece grown by the ghost margin, and only that."""
+    whole = [0, N - 1, 0, N - 1, 0, N - 1]
+    ghost = int(field(data, "GhostMarginVoxels")[0][0])
+    extents = [[int(v) for v in e] for e in field(data, "PieceInputExtents")]
+    read = [b[0] for b in field(data, "PieceReaderVoxelBytesRead")]
+    check(len(extents) == 2, "%s: both ranks reported (%d)" % (name, len(extents)))
+    translator = vtkExtentTranslator()
+    for rank, (extent, bytes_read) in enumerate(zip(extents, read)):
+        piece = [0] * 6
+        translator.PieceToExtentThreadSafe(rank, 2, 0, whole, piece, translator.BLOCK_MODE, 0)
+        grown = [max(whole[a], piece[a] - ghost) if a % 2 == 0 else
+                 min(whole[a], piece[a] + ghost) for a in range(6)]
+        voxels = np.prod([extent[2 * a + 1] - extent[2 * a] + 1 for a in range(3)])
+        check(extent == grown, "%s: rank %d read its piece %s grown by %d voxels: %s"
+              % (name, rank, piece, ghost, extent))
+        check(bytes_read == 4 * voxels < 4 * N ** 3,
+              "%s: rank %d read %d bytes, its extent's %d of the volume's %d"
+              % (name, rank, bytes_read, 4 * voxels, 4 * N ** 3))
+
+
+def distributed(references):
+    for name, (path, reference, envelope) in references.items():
+        volume = simple.OpenDataFile(path)
+        centerline = simple.VesselCenterline(Input=volume, **FILTER)
+        centerline.UpdatePipeline()
+        data = sm.Fetch(centerline)
+        got = graph(data, 1.0)
+        print("%s on 2 ranks: %d paths, %s; stitch: %s joined, %s unmatched, %s loops closed"
+              % (name, got["paths"], topology(got), field(data, "StitchCutEndsJoined"),
+                 field(data, "StitchCutEndsUnmatched"), field(data, "StitchLoopsClosed")))
+        check(int(field(data, "DistributedPieces")[0][0]) == 2,
+              "%s: the extraction ran on both ranks" % name)
+        check_pieces(name, data)
+        check(field(data, "StitchCutEndsJoined")[0][0] >= 1,
+              "%s: a vessel crosses the piece boundary (a cut end was joined)" % name)
+        check(field(data, "StitchCutEndsUnmatched")[0][0] == 0,
+              "%s: every cut end found its partner" % name)
+        check(field(data, "StitchBifurcationsWithoutBranch")[0][0] == 0,
+              "%s: every bifurcation kept its branch" % name)
+        check(topology(got) == topology(reference),
+              "%s: the stitched skeleton has the built-in topology (%s vs %s)"
+              % (name, topology(got), topology(reference)))
+        for b in reference["bifurcations"]:
+            print("  bifurcation at z = %.1f (the piece face is z = 63)" % b[2])
+        worst = max(farthest_point_voxels(got["points"], reference["points"], 1.0),
+                    farthest_point_voxels(reference["points"], got["points"], 1.0))
+        tolerance = 0.1 if CASES[name][1] else envelope + 0.1
+        print("  largest point distance %.3f voxel (tolerance %.3f)" % (worst, tolerance))
+        check(worst <= tolerance, "%s: every point within %.3f voxel of the built-in run "
+              "(%.3f)" % (name, tolerance, worst))
+        simple.Delete(centerline)
+        simple.Delete(volume)
+
+
+def main():
+    folder = tempfile.mkdtemp(prefix="vtouch-cs-distributed-")
+    try:
+        references = builtin_references(folder)
+        simple.Disconnect()
+        run_connected(PLUGIN, check, lambda: distributed(references))
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    CHECK.finish()
+
+
+main()
