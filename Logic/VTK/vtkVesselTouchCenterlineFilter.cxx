@@ -646,7 +646,8 @@ bool vtkVesselTouchCenterlineFilter::Distributed(int piece, int pieces) const
   // The raw seeded mode needs the range and the grown region across ranks: not yet (departure
   // in Docs/CLIENT-SERVER.md); it keeps the whole volume on the first rank.
   const bool seededRaw = this->AutomaticIntensityRange && this->UseSeedPoint;
-  return !seededRaw && vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
+  return this->DistributedExtraction && !seededRaw &&
+    vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
 }
 
 int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]) const
@@ -789,7 +790,8 @@ std::string vtkVesselTouchCenterlineFilter::RunKey(vtkImageData* input, vtkDataA
       << this->SmoothingWindow << " downsample " << this->DownsampleFactor << " vesselness "
       << this->UseVesselness << " " << this->VesselnessSigmaMinimum << " "
       << this->VesselnessSigmaMaximum << " " << this->VesselnessNumberOfScales << " "
-      << this->VesselnessThreshold << " largest radius " << this->LargestVesselRadius;
+      << this->VesselnessThreshold << " largest radius " << this->LargestVesselRadius
+      << " distributed " << this->DistributedExtraction;
   return key.str();
 }
 
@@ -853,6 +855,7 @@ void vtkVesselTouchCenterlineFilter::CopyParameters(vtkVesselTouchCenterlineFilt
   this->VesselnessNumberOfScales = other->VesselnessNumberOfScales;
   this->VesselnessThreshold = other->VesselnessThreshold;
   this->LargestVesselRadius = other->LargestVesselRadius;
+  this->DistributedExtraction = other->DistributedExtraction;
   if (vtkInformation* array = other->GetInputArrayInformation(0))
   {
     this->GetInputArrayInformation(0)->Copy(array);
@@ -875,4 +878,5 @@ void vtkVesselTouchCenterlineFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DownsampleFactor: " << this->DownsampleFactor << "\n";
   os << indent << "UseVesselness: " << this->UseVesselness << "\n";
   os << indent << "LargestVesselRadius: " << this->LargestVesselRadius << "\n";
+  os << indent << "DistributedExtraction: " << this->DistributedExtraction << "\n";
 }

@@ -102,6 +102,14 @@ public:
   vtkSetMacro(VesselnessThreshold, double);
   vtkGetMacro(VesselnessThreshold, double);
 
+  /// On a parallel pvserver (MPI): 1 = each rank codes its own piece grown by the ghost margin and
+  /// rank 0 stitches the pieces (issue 19 item 2; the memory per rank falls with the ranks);
+  /// 0 (default) = the first rank codes the whole volume (right on every network, no memory
+  /// scaling). Off by default until a vessel lying along a piece face is kept (Docs/CLIENT-SERVER.md,
+  /// "Distributed extraction": such a vessel can be dropped by both ranks). Not used built in.
+  vtkSetMacro(DistributedExtraction, int);
+  vtkGetMacro(DistributedExtraction, int);
+  vtkBooleanMacro(DistributedExtraction, int);
   /// Distributed extraction (pvserver under MPI, issue 19 item 2): the largest vessel radius, mm,
   /// the ghost margin around each rank's piece must cover (vtouch::GhostMarginRule). 0 (default)
   /// = automatic: 10 voxels of the largest spacing. Not used by a one-process run.
@@ -188,6 +196,7 @@ private:
   int VesselnessNumberOfScales = 4;
   double VesselnessThreshold = 0.05;
   double LargestVesselRadius = 0.0;
+  int DistributedExtraction = 0;
   bool QuietErrors = false;
   bool WarnedUndistributed = false;
   std::string LastRunKey;

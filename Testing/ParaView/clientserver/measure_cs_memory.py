@@ -79,7 +79,8 @@ def measure(path, ranks, radius_mm):
         simple.LoadPlugin(plugin, remote=False)
         volume = simple.OpenDataFile(path)
         centerline = simple.VesselCenterline(Input=volume, AutomaticIntensityRange=0,
-                                             LowerThreshold=550.0, LargestVesselRadius=radius_mm)
+                                             LowerThreshold=550.0, LargestVesselRadius=radius_mm,
+                                             DistributedExtraction=1)
         centerline.UpdatePipeline()
         data = sm.Fetch(centerline)
         hwm = [vm_hwm_kib(p) for p in descendants_named(server.process.pid, "pvserver")]

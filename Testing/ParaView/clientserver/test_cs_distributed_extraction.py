@@ -45,7 +45,7 @@ RADIUS_FRACTION = 0.025  # radius 3.2 voxels: ghost margin 26 voxels, a piece re
 # ranks code what the single run codes: 0.1 voxel); the ring is wider than a grown piece, so
 # each rank codes an arc with a root of its own (the root envelope applies).
 CASES = {"tree": (5, True), "loop network": (6, True), "ring": (0, False), "Y": (4, True)}
-FILTER = dict(AutomaticIntensityRange=0, LowerThreshold=550.0,
+FILTER = dict(AutomaticIntensityRange=0, LowerThreshold=550.0, DistributedExtraction=1,
               LargestVesselRadius=RADIUS_FRACTION * N)
 
 
