@@ -4,7 +4,7 @@ under Testing/Utilities/vtouch-xvfb-run, or by hand:
 
     Testing/Utilities/vtouch-xvfb-run pvpython Testing/Benchmarks/scaling_client.py \
         --plugin build/lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so \
-        --volume vessels.nrrd --ranks 2 --lower 500 --upper 65535 --json out.json
+        --volume vessels.nrrd --ranks 2 [--distributed] --lower 500 --upper 65535 --json out.json
 
 Starts `mpiexec -np N pvserver` on 127.0.0.1 (Testing/ParaView/clientserver/vtouch_pvserver.py:
 free port, every wait timed out, the process group ended), connects, loads the plugin on both
@@ -122,7 +122,8 @@ def measure(args, server, result):
     result["voxels"] = info.GetNumberOfPoints()
 
     centerline = simple.VesselCenterline(Input=reader, AutomaticIntensityRange=0,
-                                         LowerThreshold=args.lower, UpperThreshold=args.upper)
+                                         LowerThreshold=args.lower, UpperThreshold=args.upper,
+                                         DistributedExtraction=1 if args.distributed else 0)
     t = time.perf_counter()
     centerline.UpdatePipeline()
     result["centerline_s"] = time.perf_counter() - t
@@ -177,11 +178,14 @@ def main():
     parser.add_argument("--ranks", type=int, default=2)
     parser.add_argument("--lower", type=float, default=500.0)
     parser.add_argument("--upper", type=float, default=65535.0)
+    parser.add_argument("--distributed", action="store_true",
+                        help="VesselCenterline's DistributedExtraction on (each rank codes its "
+                             "piece); off: the first rank codes the whole volume")
     parser.add_argument("--seconds", type=float, default=3.0, help="per haptic phase")
     parser.add_argument("--view-px", type=int, default=400)
     parser.add_argument("--json", required=True)
     args = parser.parse_args()
-    result = {"requested_ranks": args.ranks}
+    result = {"requested_ranks": args.ranks, "distributed": int(args.distributed)}
     server = ParallelServer(ranks=args.ranks, start_timeout_s=180.0)
     failed = False
     try:

@@ -354,34 +354,33 @@ def chart_render(out, results):
 
 
 def chart_client_server_scaling(out, results):
-    """Issue 19 item 4: per volume size, against the rank count: the largest rank's peak memory,
-    the centerline's time in the pipeline, the bytes sent to the client, the client's haptic p99."""
+    """Issue 19 item 4: per volume size, against the rank count, the whole volume on the first
+    rank (solid) and distributed extraction (dashed): the largest rank's peak memory, the
+    centerline's time in the pipeline, the bytes sent to the client, the client's haptic p99."""
     raw = load(out, "scaling")
     if not raw:
         return
-    ranks = raw["ranks"]
+    runs = raw["runs"]
     panels = (("peak_rss_mib_max", "largest rank's peak memory (MiB)"),
               ("centerline_s", "VesselCenterline in the pipeline (s)"),
               ("bytes_to_client", "skeleton sent to the client (bytes)"),
               ("haptic.render.period_error_p99_us", "client haptic p99 period error\n"
                "while the server renders (us)"))
-    fig, axes = plt.subplots(1, 4, figsize=(15, 4))
+    fig, axes = plt.subplots(1, 4, figsize=(15, 4.2))
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for ax, (key, label) in zip(axes, panels):
-        for size in raw["sizes"]:
-            values = [raw.get("%s.r%d" % (size, n), {}).get(key, float("nan")) for n in ranks]
-            ax.plot(ranks, values, "o-", label=size)
-        if key == "haptic.render.period_error_p99_us":
-            for size in raw["sizes"]:
-                idle = [raw.get("%s.r%d" % (size, n), {}).get("haptic.idle.period_error_p99_us",
-                                                              float("nan")) for n in ranks]
-                ax.plot(ranks, idle, "x:", color="0.5")
-            ax.plot([], [], "x:", color="0.5", label="idle (no rendering)")
-        ax.set_xticks(ranks)
+        for i, size in enumerate(raw["sizes"]):
+            for distributed, style in ((False, "o-"), (True, "s--")):
+                chosen = [r for r in runs if r == "r1" or r.endswith("d") == distributed]
+                ranks = [int(r[1:].rstrip("d")) for r in chosen]
+                values = [raw.get("%s.%s" % (size, r), {}).get(key, float("nan")) for r in chosen]
+                ax.plot(ranks, values, style, color=colours[i % len(colours)],
+                        label="%s %s" % (size, "distributed" if distributed else "whole on rank 0"))
+        ax.set_xticks(sorted({int(r[1:].rstrip("d")) for r in runs}))
         ax.set_xlabel("pvserver ranks (2 cores: 4 oversubscribe)")
         ax.set_ylabel(label, fontsize=8)
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=7)
-    axes[3].legend(fontsize=7)
+    axes[0].legend(fontsize=6)
     fig.suptitle("client/server: the volume on N ranks, the haptic session in the client",
                  fontsize=10)
     save(fig, out, "client_server_scaling.png", results)

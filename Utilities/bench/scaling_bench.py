@@ -8,15 +8,17 @@ in the pipeline (reader already updated) and the filter's own stage times, the d
 skeleton to the client and its bytes, each rank's peak resident memory (VmHWM), and the client's
 haptic loop (p99 period error) idle and while the server renders the MIP.
 
-Sizes: full 256^3, 512 x 512 x 256 and 1024 x 1024 x 512 at 1, 2 and 4 ranks; --quick 96 x 96 x 64
-at 1 and 2 ranks. On 2 cores 4 ranks oversubscribe: their times show contention, their memory is
-the measure (Docs/SCALING.md).
+Configurations ("runs"): r1 (one rank), r<N> (N ranks, VesselCenterline's default: the first rank
+codes the whole volume) and r<N>d (N ranks, DistributedExtraction on: each rank codes its piece),
+side by side. Full: 256^3, 512 x 512 x 256 and 1024 x 1024 x 512, runs r1 r2 r2d r4 r4d; --quick:
+96 x 96 x 64, runs r1 r2d. On 2 cores 4 ranks oversubscribe: their times show contention, their
+memory is the measure (Docs/SCALING.md).
 
-Keys (flat): scaling.<X>x<Y>x<Z>.r<N>.<measure> with every measure scaling_client.py writes
+Keys (flat): scaling.<X>x<Y>x<Z>.<run>.<measure> with every measure scaling_client.py writes
 (read_s, centerline_s, stage_<stage>_s, deliver_s, bytes_to_client, peak_rss_mib_max,
 peak_rss_mib.rank<r>, haptic.{idle,render}.period_error_p99_us, ...), plus
-scaling.<size>.memory_ratio_r<N> = peak_rss_mib_max at N ranks / at 1 rank, and
-scaling.largest.* copies of the largest size's keys (the quick and full runs then share names).
+scaling.<size>.memory_ratio_<run> = peak_rss_mib_max of the run / of r1, and scaling.largest.*
+copies of the largest size's keys (the quick and full runs then share names).
 """
 import json
 import math
@@ -98,8 +100,9 @@ def run(build, quick, tmp, log):
     if not os.path.exists(plugin):
         raise RuntimeError("missing " + plugin)
     sizes = [(96, 96, 64)] if quick else [(256, 256, 256), (512, 512, 256), (1024, 1024, 512)]
-    rank_counts = (1, 2) if quick else (1, 2, 4)
-    results, raw = {}, {"sizes": [], "ranks": list(rank_counts)}
+    runs = [(1, False), (2, True)] if quick else [(1, False), (2, False), (2, True), (4, False),
+                                                   (4, True)]
+    results, raw = {}, {"sizes": [], "runs": ["r%d%s" % (n, "d" if d else "") for n, d in runs]}
     for dims in sizes:
         tag = "%dx%dx%d" % dims
         path = os.path.join(tmp, "scaling_%s.nrrd" % tag)
@@ -108,31 +111,34 @@ def run(build, quick, tmp, log):
         log("scaling: wrote %s (%d vessel voxels) in %.1f s" % (tag, vessel_voxels, time.time() - t))
         results["scaling.%s.vessel_voxels" % tag] = vessel_voxels
         raw["sizes"].append(tag)
-        for n in rank_counts:
-            out = os.path.join(tmp, "scaling_%s_r%d.json" % (tag, n))
+        for n, distributed in runs:
+            run_name = "r%d%s" % (n, "d" if distributed else "")
+            out = os.path.join(tmp, "scaling_%s_%s.json" % (tag, run_name))
             cmd = [os.path.join(ROOT, "Testing", "Utilities", "vtouch-xvfb-run"), "pvpython",
                    os.path.join(ROOT, "Testing", "Benchmarks", "scaling_client.py"),
                    "--plugin", plugin, "--volume", path, "--ranks", str(n), "--json", out,
-                   "--seconds", "1.5" if quick else "4"]
+                   "--seconds", "1.5" if quick else "4"] + (["--distributed"] if distributed
+                                                             else [])
             t = time.time()
             done = subprocess.run(cmd, capture_output=True, text=True, timeout=1800)
             data = json.load(open(out)) if os.path.exists(out) else {}
             if done.returncode != 0 or "error" in data:
-                raise RuntimeError("scaling %s at %d ranks failed: %s\n%s" % (
-                    tag, n, data.get("error"), (done.stdout + done.stderr)[-3000:]))
-            log("scaling: %s at %d ranks: centerline %.2f s, peak rank %.0f MiB, %d bytes to the "
+                raise RuntimeError("scaling %s %s failed: %s\n%s" % (
+                    tag, run_name, data.get("error"), (done.stdout + done.stderr)[-3000:]))
+            log("scaling: %s %s: centerline %.2f s, peak rank %.0f MiB, %d bytes to the "
                 "client, haptic p99 idle %.0f us / render %.0f us (%.0f s)"
-                % (tag, n, data["centerline_s"], data["peak_rss_mib_max"], data["bytes_to_client"],
+                % (tag, run_name, data["centerline_s"], data["peak_rss_mib_max"],
+                   data["bytes_to_client"],
                    data["haptic.idle.period_error_p99_us"],
                    data["haptic.render.period_error_p99_us"], time.time() - t))
-            raw["%s.r%d" % (tag, n)] = data
+            raw["%s.%s" % (tag, run_name)] = data
             for key, value in data.items():
                 if isinstance(value, (int, float)) and not isinstance(value, bool):
-                    results["scaling.%s.r%d.%s" % (tag, n, key)] = value
+                    results["scaling.%s.%s.%s" % (tag, run_name, key)] = value
         base = results["scaling.%s.r1.peak_rss_mib_max" % tag]
-        for n in rank_counts[1:]:
-            results["scaling.%s.memory_ratio_r%d" % (tag, n)] = (
-                results["scaling.%s.r%d.peak_rss_mib_max" % (tag, n)] / base)
+        for run_name in raw["runs"][1:]:
+            results["scaling.%s.memory_ratio_%s" % (tag, run_name)] = (
+                results["scaling.%s.%s.peak_rss_mib_max" % (tag, run_name)] / base)
     largest = "%dx%dx%d" % sizes[-1]
     for key, value in list(results.items()):
         if key.startswith("scaling.%s." % largest):
