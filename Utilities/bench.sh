@@ -9,7 +9,8 @@
 #   --build    build folder (default build/ beside Utilities)
 #   --out      output folder (default BUILD/bench)
 #   --publish  also copy the charts to Docs/performance/ (for Docs/PERFORMANCE.md)
-#   --only     run only these sections (centerline haptic force stability render gui); the others'
+#   --only     run only these sections (centerline rawcenterline haptic force stability render gui
+#              scaling); the others'
 #              keys are kept from the previous results.json
 # Needs /usr/bin/python3 with numpy, scipy, matplotlib and scikit-image, pvpython and Xvfb.
 set -uo pipefail
