@@ -7,9 +7,12 @@
 // kMaximumStrongNeighbours of its 26 neighbours strong (a one-voxel gap of a thin vessel has
 // vessel on two sides; the partial-volume shell of a thick vessel faces a whole 3x3 face of it).
 // These two rules are the product's (no paper gives them): they keep thin partial-volume vessels
-// connected across a dim voxel without thickening the thick ones.
+// connected across a dim voxel without thickening the thick ones. Dim dead ends that are not
+// detectable objects (noise beside a vessel or past a thin vessel's tip) are cleared afterwards
+// (DimStrandPruner).
 #pragma once
 
+#include "vtouchDimStrandPruner.h"
 #include "vtouchIntensityRangeEstimator.h"
 #include "vtouchProgress.h"
 #include "vtouchSparseVesselMask.h"
@@ -115,6 +118,7 @@ SparseVesselMask SeededRegionGrower::grow(const VolumeView<T>& volume,
   }
   std::vector<std::uint64_t> stack{ volume.linear(seed[0], seed[1], seed[2]) };
   mask.set(stack.back());
+  std::vector<std::uint64_t> dim; // the ridge voxels below range.lower that joined
   ProgressCounter counter(progress, volume.size());
   while (!stack.empty())
   {
@@ -138,8 +142,13 @@ SparseVesselMask SeededRegionGrower::grow(const VolumeView<T>& volume,
           }
           mask.set(n);
           stack.push_back(n);
+          if (!strong(volume, range, n))
+          {
+            dim.push_back(n);
+          }
         }
   }
+  DimStrandPruner::prune(volume, range, dim, mask);
   mask.finalize();
   return mask;
 }

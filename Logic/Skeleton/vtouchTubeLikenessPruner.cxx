@@ -4,6 +4,7 @@
 #include <utility>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace vtouch
@@ -102,6 +103,56 @@ enum class Status : std::uint8_t
   NotTube,
   Unjudged
 };
+
+/// Where a free tail's run into a blob starts (Settings::blobTubePoints): the smallest k such
+/// that the judged points k..n-1 (>= minimumTrimPoints of them) are all wider than the tube, the
+/// judged points just before k; -1 when there is none. `width` and `st` in the path's order from
+/// the other end to the free one.
+int blobRunStart(const std::vector<double>& width,
+  const std::vector<Status>& st,
+  const TubeLikenessPruner::Settings& s)
+{
+  const int n = static_cast<int>(width.size());
+  if (s.blobTubePoints <= 0)
+  {
+    return -1;
+  }
+  int start = -1, judged = 0;
+  double narrowest = std::numeric_limits<double>::infinity(); // over the run k..n-1
+  for (int k = n - 1; k >= 1; --k)
+  {
+    if (st[static_cast<std::size_t>(k)] == Status::Unjudged)
+    {
+      continue;
+    }
+    narrowest = std::min(narrowest, width[static_cast<std::size_t>(k)]);
+    ++judged;
+    if (narrowest < s.blobMinimumWidth_voxels)
+    {
+      break; // a thin section in the run: no run from further in either
+    }
+    std::vector<double> tube;
+    for (int q = k - 1; q >= 0 && static_cast<int>(tube.size()) < s.blobTubePoints; --q)
+    {
+      if (st[static_cast<std::size_t>(q)] != Status::Unjudged)
+      {
+        tube.push_back(width[static_cast<std::size_t>(q)]);
+      }
+    }
+    if (static_cast<int>(tube.size()) < s.blobTubePoints)
+    {
+      break;
+    }
+    std::nth_element(tube.begin(), tube.begin() + tube.size() / 2, tube.end());
+    const double t = tube[tube.size() / 2];
+    if (judged >= s.minimumTrimPoints &&
+        narrowest > t + std::max(s.blobExcess_voxels, s.blobExcessFraction * t))
+    {
+      start = k;
+    }
+  }
+  return start;
+}
 
 struct Zone
 {
@@ -344,6 +395,66 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
     }
     tubeLike = std::move(keptTube);
     width = std::move(keptWidth);
+  }
+  // Free ends that run into a blob: back to the tube before it.
+  {
+    const std::vector<std::vector<Status>> status = judge(skeleton, tubeLike, voxel_mm, s);
+    for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
+    {
+      SkeletonPath& path = skeleton.paths[i];
+      int lastChildPoint = -1, firstChildPoint = static_cast<int>(path.points.size());
+      for (const Junction& j : skeleton.junctions)
+      {
+        if (j.parentPath == path.id)
+        {
+          lastChildPoint = std::max(lastChildPoint, j.parentPoint);
+          firstChildPoint = std::min(firstChildPoint, j.parentPoint);
+        }
+      }
+      const int n = static_cast<int>(path.points.size());
+      if (path.tail.junction < 0)
+      {
+        const int k = blobRunStart(width[i], status[i], s);
+        if (k > lastChildPoint && k >= 1)
+        {
+          result.pointsRemoved += static_cast<std::size_t>(n - k);
+          path.points.resize(static_cast<std::size_t>(k));
+          width[i].resize(static_cast<std::size_t>(k));
+          tubeLike[i].resize(static_cast<std::size_t>(k));
+          path.points.back().label = PointLabel::EndPoint;
+          ++result.endsTrimmed;
+          ++result.blobEndsTrimmed;
+        }
+      }
+      const int m = static_cast<int>(path.points.size());
+      if (path.head.junction < 0 && m >= 2)
+      {
+        // The head read from the other end (status[i] may be longer: the tail was trimmed).
+        std::vector<double> w(width[i].begin(), width[i].begin() + m);
+        std::vector<Status> st(status[i].begin(), status[i].begin() + m);
+        std::reverse(w.begin(), w.end());
+        std::reverse(st.begin(), st.end());
+        const int r = blobRunStart(w, st, s); // reversed points r..m-1: points [0, m - r) go
+        const int cut = r < 0 ? 0 : m - r;
+        if (r >= 1 && cut < firstChildPoint && cut < m)
+        {
+          path.points.erase(path.points.begin(), path.points.begin() + cut);
+          width[i].erase(width[i].begin(), width[i].begin() + cut);
+          tubeLike[i].erase(tubeLike[i].begin(), tubeLike[i].begin() + cut);
+          path.points.front().label = PointLabel::EndPoint;
+          for (Junction& j : skeleton.junctions)
+          {
+            if (j.parentPath == path.id)
+            {
+              j.parentPoint -= cut;
+            }
+          }
+          result.pointsRemoved += static_cast<std::size_t>(cut);
+          ++result.endsTrimmed;
+          ++result.blobEndsTrimmed;
+        }
+      }
+    }
   }
   // Free ends that run onto a plate: back to the last tube-like point (only the part on the
   // clutter).

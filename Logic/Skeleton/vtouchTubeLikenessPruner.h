@@ -26,6 +26,8 @@
 // (the median of 32 rays in the section plane, beyond the junction's zone) is a bulge - a blob or
 // a knob on a vessel - and goes too (the coder's spur rule on the branch's own calibre); a piece
 // joined to nothing, unless it is the longest path, must clear twice that (a spur at each end).
+// A free end whose last points are all much wider than the tube just before them (a thin vessel
+// run into a blob) is trimmed back to that tube.
 #pragma once
 
 #include "vtouchQSkeleton.h"
@@ -65,6 +67,17 @@ public:
     /// spur length (MinimumBranchLength, 2.5 radii of the vessel joined) on the branch's own. A
     /// path free at both ends (not the longest) must clear twice this.
     double bulgeFactor = 2.5;
+    /// A free end that runs into a blob: the end's last points (>= minimumTrimPoints judged) all
+    /// wider than the tube just before them, s > t + max(blobExcess_voxels, blobExcessFraction
+    /// t) and s >= blobMinimumWidth_voxels, t the median section radius of the blobTubePoints
+    /// judged points before the run, are trimmed. The tube-section tracker's clutter criteria
+    /// (step 4: "wider than the tube it left", "not a thin vessel's noisy wall"), here for ends
+    /// that no track replaced (a vessel under a voxel in radius gives no 3 clean sections under
+    /// noise). 0 points = off.
+    int blobTubePoints = 5;
+    double blobExcess_voxels = 1.0;
+    double blobExcessFraction = 0.5;
+    double blobMinimumWidth_voxels = 1.5;
   };
 
   struct Result
@@ -72,6 +85,7 @@ public:
     int pathsRemoved = 0;
     int bulgesRemoved = 0; ///< of pathsRemoved: bulges
     int endsTrimmed = 0;
+    int blobEndsTrimmed = 0; ///< of endsTrimmed: ends run into a blob
     std::size_t pointsRemoved = 0;
   };
 

@@ -148,8 +148,11 @@ if os.path.exists(CTA):
     # Issue 16 asks >= 0.95 within 1 mm; reached 0.878 by this measure (nearest output point;
     # 0.917 along the polylines, RawAortaCtaFromASeedAloneCoversTheVmtkReference): floors at what
     # is reached, not the target. The misses: VMTK's two centerlines 2-7 mm apart in the aorta's
-    # lowest centimetre, the seed's end and the reference's cut top end (Docs/CENTERLINES.md).
-    check.true(within1 >= 0.87, "reference within 1 mm of the extraction: %.3f >= 0.87" % within1)
+    # lowest centimetre, where the lumen is already one flattened lobe (a network that branches
+    # where the section splits into two lobes reaches at most 0.924 along its polylines:
+    # Utilities/bench/cta_bifurcation_sections.py), the seed's end and the reference's cut top end
+    # (Docs/CENTERLINES.md, "Not met yet").
+    check.true(within1 >= 0.875, "reference within 1 mm of the extraction: %.3f >= 0.875" % within1)
     check.true(within2 >= 0.96, "reference within 2 mm of the extraction: %.3f >= 0.96" % within2)
     # Topology on the part the reference covers: its three ends are reached, and exactly one
     # bifurcation there has both branches running on along the reference (the iliac one); other

@@ -144,6 +144,51 @@ TEST(SeededRegionGrower, ThinVesselCrossesADimVoxelAndThickVesselIsNotThickened)
   EXPECT_LE(tube.vesselCount(), tubeStrong.vesselCount() + tubeStrong.vesselCount() / 50);
 }
 
+TEST(DimStrandPruner, NoiseVoxelPastAnEndGoesDimVesselAndGapStay)
+{
+  // Background 100, noise sigma 20: Rose's criterion asks a dead end for a summed contrast of
+  // 5 x 20 x sqrt(n). Each line is strong (1000) from i = 3 to 20, then what follows.
+  SyntheticAngiogram g({ 40, 40, 40 });
+  const auto line = [&g](std::int64_t j, std::int64_t k, std::int64_t to)
+  {
+    for (std::int64_t i = 3; i <= to; ++i)
+    {
+      g.at(i, j, k) = 1000.0F;
+    }
+  };
+  line(10, 10, 20);
+  g.at(21, 10, 10) = 170.0F; // one dim ridge voxel past the end, 3.5 sigma: noise
+  line(20, 10, 20);
+  g.at(21, 20, 10) = 250.0F; // 7.5 sigma: detectable alone
+  line(30, 10, 20);
+  for (std::int64_t i = 21; i <= 24; ++i)
+  {
+    g.at(i, 30, 10) = 170.0F; // a dim thin vessel 4 voxels long: 4 x 70 >= 5 x 20 x 2
+  }
+  line(10, 30, 36);
+  g.at(20, 10, 30) = 170.0F; // a dim gap: vessel on both sides
+  IntensityRange r;
+  r.ok = true;
+  r.lower = 550.0;
+  r.upper = 2000.0;
+  r.weakLower = 160.0; // B + 3 S
+  r.background = 100.0;
+  r.backgroundNoise = 20.0;
+  const SparseVesselMask noisyEnd = SeededRegionGrower::grow(g.view(), r, { 5, 10, 10 });
+  EXPECT_FALSE(has(noisyEnd, 21, 10, 10));
+  EXPECT_EQ(noisyEnd.vesselCount(), 18u);
+  EXPECT_TRUE(has(SeededRegionGrower::grow(g.view(), r, { 5, 20, 10 }), 21, 20, 10));
+  const SparseVesselMask dimVessel = SeededRegionGrower::grow(g.view(), r, { 5, 30, 10 });
+  EXPECT_TRUE(has(dimVessel, 24, 30, 10));
+  EXPECT_EQ(dimVessel.vesselCount(), 22u);
+  const SparseVesselMask gap = SeededRegionGrower::grow(g.view(), r, { 5, 10, 30 });
+  EXPECT_TRUE(has(gap, 36, 10, 30)) << "the line continues past its dim voxel";
+  EXPECT_TRUE(has(gap, 20, 10, 30));
+  // With no noise figure (sigma 0) every dim ridge voxel passes: nothing is cleared.
+  r.backgroundNoise = 0.0;
+  EXPECT_TRUE(has(SeededRegionGrower::grow(g.view(), r, { 5, 10, 10 }), 21, 10, 10));
+}
+
 TEST(RegionDepth, DepthCountsLayersToTheBorder)
 {
   SparseVesselMask m({ 12, 12, 12 });

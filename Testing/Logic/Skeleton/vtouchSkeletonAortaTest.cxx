@@ -219,12 +219,13 @@ TEST(VoxelCodingSkeletonFilter, RawAortaCtaFromASeedAloneCoversTheVmtkReference)
             << "; re-traced " << refined.tracked.stretchesTracked << ", cut "
             << refined.tracked.stretchesCut << ", removed " << refined.pruned.pathsRemoved
             << "; reference within 1 mm " << c.coveredWithin1mm << "\n";
-  // Issue 16 asks 0.95 within 1 mm; reached 0.917 (the floor below). The misses: VMTK's two
+  // Issue 16 asks 0.95 within 1 mm; reached 0.9169 (the floor below). The misses: VMTK's two
   // centerlines run 2-7 mm apart over the aorta's lowest centimetre above the iliac carina (28 of
-  // the 409 reference points), where the Q-skeleton has one trunk path and the left iliac joins it
-  // at the carina (the seed, the root, is in the right iliac); the seed's own end and the
-  // reference's cut top end miss by 1.0-1.3 mm. See Docs/CENTERLINES.md, "Raw angiograms".
-  EXPECT_GE(c.coveredWithin1mm, 0.91);
+  // the 409 reference points), where the lumen's cross-section is already one flattened lobe: a
+  // network that branches where the section splits into two lobes has one line there and reaches
+  // at most 0.924 (Utilities/bench/cta_bifurcation_sections.py); the seed's own end and the
+  // reference's cut top end miss by 1.0-1.4 mm. See Docs/CENTERLINES.md, "Raw angiograms".
+  EXPECT_GE(c.coveredWithin1mm, 0.915);
   EXPECT_EQ(t.loops, 0); // a tree: no false ring through tissue at vessel intensity
 }
 

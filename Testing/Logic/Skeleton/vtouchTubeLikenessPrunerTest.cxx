@@ -514,3 +514,48 @@ TEST(TubeLikenessPruner, RemovesAShortPieceOnABallBesideTheNetworkAndKeepsALoneS
   EXPECT_EQ(r2.pathsRemoved, 0);
   EXPECT_EQ(alone.paths.size(), 1u);
 }
+
+TEST(TubeLikenessPruner, TrimsAThinVesselsEndRunIntoABallAndKeepsATaperedVesselWhole)
+{
+  // A vessel of radius 1 runs along x into a ball of radius 4.5 (its end 3 voxels inside the
+  // ball): the coder runs the path on to the ball's far side. The end goes back to the tube, where
+  // the ball begins. A vessel widening gradually from radius 1 to 4 over 40 voxels (a root's trunk
+  // seen from a branch) keeps every point.
+  const Dims dims{ 72, 32, 32 };
+  const Vec3 a{ 3, 16, 16 }, end{ 50, 16, 16 };
+  const Vec3 ball{ 51.5, 16, 16 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p) { return segmentDistance(p, a, end) <= 1.0 || (p - ball).norm() <= 4.5; });
+  QSkeleton s = code(dims, mask, a + Vec3{ 1, 0, 0 });
+  const auto deepest = [&](const QSkeleton& q)
+  {
+    double x = 0.0;
+    for (const SkeletonPath& path : q.paths)
+      for (const SkeletonPoint& p : path.points)
+        x = std::max(x, p.position_World_mm.x);
+    return x;
+  };
+  const double before = deepest(s);
+  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
+  std::cout << "thin vessel into a ball: end x " << before << " -> " << deepest(s)
+            << ", blob ends trimmed " << r.blobEndsTrimmed << ", covered "
+            << coverage(s, a, ball - Vec3{ 6.0, 0, 0 }, 3.0, 1.0) << "\n";
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_GT(before, ball.x - 1.0); // the coder did run into the ball
+  EXPECT_EQ(r.blobEndsTrimmed, 1);
+  EXPECT_LE(deepest(s), ball.x - 4.5 + 1.5); // at most 1.5 voxels inside the ball
+  EXPECT_GE(coverage(s, a, ball - Vec3{ 6.0, 0, 0 }, 3.0, 1.0), 0.99);
+
+  const Vec3 c{ 4, 16, 16 }, d{ 44, 16, 16 };
+  const SparseVesselMask cone = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      const double t = std::clamp((p.x - c.x) / (d.x - c.x), 0.0, 1.0);
+      return segmentDistance(p, c, d) <= 4.0 - 3.0 * t;
+    });
+  QSkeleton t = code(dims, cone, d - Vec3{ 1, 0, 0 }); // rooted at the thin end
+  const std::size_t coneBefore = t.pointCount();
+  const auto rc = TubeLikenessPruner::prune(t, TubeLikenessPruner::foreground(cone), kUnit);
+  EXPECT_EQ(rc.blobEndsTrimmed, 0);
+  EXPECT_EQ(t.pointCount(), coneBefore);
+}
