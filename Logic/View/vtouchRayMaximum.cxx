@@ -6,9 +6,10 @@
 namespace vtouch
 {
 
-bool RayMaximum::clipToVolume(const std::array<int, 3>& dimensions,
-  const std::array<double, 3>& start_Index,
-  const std::array<double, 3>& end_Index,
+bool RayMaximum::clipSegmentToBox(const std::array<double, 3>& low,
+  const std::array<double, 3>& high,
+  const std::array<double, 3>& start,
+  const std::array<double, 3>& end,
   double& t0,
   double& t1)
 {
@@ -16,24 +17,21 @@ bool RayMaximum::clipToVolume(const std::array<int, 3>& dimensions,
   t1 = 1.0;
   for (int axis = 0; axis < 3; ++axis)
   {
-    if (dimensions[axis] <= 0 || !std::isfinite(start_Index[axis]) ||
-        !std::isfinite(end_Index[axis]))
+    if (!std::isfinite(start[axis]) || !std::isfinite(end[axis]) || !(low[axis] <= high[axis]))
     {
       return false;
     }
-    const double low = -0.5;
-    const double high = dimensions[axis] - 0.5;
-    const double delta = end_Index[axis] - start_Index[axis];
+    const double delta = end[axis] - start[axis];
     if (delta == 0.0)
     {
-      if (start_Index[axis] < low || start_Index[axis] > high)
+      if (start[axis] < low[axis] || start[axis] > high[axis])
       {
         return false;
       }
       continue;
     }
-    double a = (low - start_Index[axis]) / delta;
-    double b = (high - start_Index[axis]) / delta;
+    double a = (low[axis] - start[axis]) / delta;
+    double b = (high[axis] - start[axis]) / delta;
     if (a > b)
     {
       std::swap(a, b);
@@ -46,6 +44,25 @@ bool RayMaximum::clipToVolume(const std::array<int, 3>& dimensions,
     }
   }
   return true;
+}
+
+bool RayMaximum::clipToVolume(const std::array<int, 3>& dimensions,
+  const std::array<double, 3>& start_Index,
+  const std::array<double, 3>& end_Index,
+  double& t0,
+  double& t1)
+{
+  std::array<double, 3> low{}, high{};
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (dimensions[axis] <= 0)
+    {
+      return false;
+    }
+    low[axis] = -0.5;
+    high[axis] = dimensions[axis] - 0.5;
+  }
+  return clipSegmentToBox(low, high, start_Index, end_Index, t0, t1);
 }
 
 RayMaximumResult RayMaximum::find(const std::array<int, 3>& dimensions,

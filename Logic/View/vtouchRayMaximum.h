@@ -42,8 +42,19 @@ public:
     const Sampler& sample,
     double step_voxels = 0.25);
 
+  /// Clips the segment start + t (end - start), t in [0, 1], to the axis-aligned box [low, high]
+  /// (slab method; any frame, the box and the segment in the same one). True and the parameter
+  /// range [t0, t1] when they intersect; false for a miss or a non-finite coordinate.
+  static bool clipSegmentToBox(const std::array<double, 3>& low,
+    const std::array<double, 3>& high,
+    const std::array<double, 3>& start,
+    const std::array<double, 3>& end,
+    double& t0,
+    double& t1);
+
   /// Clips the segment start + t (end - start), t in [0, 1], to the box [-0.5, n - 0.5] per axis
-  /// (slab method). True and the parameter range [t0, t1] when they intersect.
+  /// (clipSegmentToBox in the index frame). True and the parameter range [t0, t1] when they
+  /// intersect.
   static bool clipToVolume(const std::array<int, 3>& dimensions,
     const std::array<double, 3>& start_Index,
     const std::array<double, 3>& end_Index,

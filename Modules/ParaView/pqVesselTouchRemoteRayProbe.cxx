@@ -1,5 +1,7 @@
 #include "pqVesselTouchRemoteRayProbe.h"
 
+#include "vtouchRayMaximum.h"
+
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
 #include "pqServer.h"
@@ -18,6 +20,7 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -45,31 +48,14 @@ bool pqVesselTouchRemoteRayProbe::clipToBounds(const double bounds[6],
   double p0[3],
   double p1[3])
 {
-  double t0 = 0.0;
-  double t1 = 1.0;
-  for (int i = 0; i < 3; ++i)
+  const std::array<double, 3> low{ bounds[0], bounds[2], bounds[4] };
+  const std::array<double, 3> high{ bounds[1], bounds[3], bounds[5] };
+  const std::array<double, 3> start{ near_mm[0], near_mm[1], near_mm[2] };
+  const std::array<double, 3> end{ far_mm[0], far_mm[1], far_mm[2] };
+  double t0 = 0.0, t1 = 1.0;
+  if (!vtouch::RayMaximum::clipSegmentToBox(low, high, start, end, t0, t1))
   {
-    const double d = far_mm[i] - near_mm[i];
-    if (std::abs(d) < 1e-12)
-    {
-      if (near_mm[i] < bounds[2 * i] || near_mm[i] > bounds[2 * i + 1])
-      {
-        return false;
-      }
-      continue;
-    }
-    double a = (bounds[2 * i] - near_mm[i]) / d;
-    double b = (bounds[2 * i + 1] - near_mm[i]) / d;
-    if (a > b)
-    {
-      std::swap(a, b);
-    }
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-    if (t0 > t1)
-    {
-      return false;
-    }
+    return false;
   }
   for (int i = 0; i < 3; ++i)
   {

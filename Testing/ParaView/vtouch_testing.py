@@ -14,10 +14,12 @@ class Check:
         self.count = 0
 
     def true(self, condition, message):
+        """Records the check; returns `condition`, so a caller can skip what depends on it."""
         self.count += 1
         if not condition:
             self.failures.append(message)
             print("FAIL: " + message, flush=True)
+        return condition
 
     def equal(self, actual, expected, message):
         self.true(actual == expected, "%s: got %r, expected %r" % (message, actual, expected))

@@ -106,6 +106,26 @@ TEST(RayMaximum, ClipsTheSegmentToTheVoxelBox)
   EXPECT_NEAR(t1, 20.0 / 30.0, 1e-12);
 }
 
+TEST(RayMaximum, ClipsASegmentToAWorldBoxAndRefusesMissesAndNonFiniteEnds)
+{
+  // The world-frame use (a click's ray against a remote volume's bounds): an oblique segment.
+  double t0 = 0.0;
+  double t1 = 0.0;
+  ASSERT_TRUE(vtouch::RayMaximum::clipSegmentToBox(
+    { 10, 20, 30 }, { 12, 22, 34 }, { 0, 11, 32 }, { 20, 31, 32 }, t0, t1));
+  EXPECT_NEAR(t0, 10.0 / 20.0, 1e-12); // x enters at 10 (y = 21 inside)
+  EXPECT_NEAR(t1, 11.0 / 20.0, 1e-12); // y leaves at 22
+  // Parallel to an axis outside the box, a miss beside it, a NaN end, an inverted box.
+  EXPECT_FALSE(vtouch::RayMaximum::clipSegmentToBox(
+    { 0, 0, 0 }, { 1, 1, 1 }, { 2, 0.5, -1 }, { 2, 0.5, 5 }, t0, t1));
+  EXPECT_FALSE(vtouch::RayMaximum::clipSegmentToBox(
+    { 0, 0, 0 }, { 1, 1, 1 }, { -1, 3, 0.5 }, { 3, 2, 0.5 }, t0, t1));
+  EXPECT_FALSE(vtouch::RayMaximum::clipSegmentToBox(
+    { 0, 0, 0 }, { 1, 1, 1 }, { 0.5, 0.5, std::nan("") }, { 0.5, 0.5, 1 }, t0, t1));
+  EXPECT_FALSE(vtouch::RayMaximum::clipSegmentToBox(
+    { 0, 0, 0 }, { -1, 1, 1 }, { 0.5, 0.5, 0 }, { 0.5, 0.5, 1 }, t0, t1));
+}
+
 TEST(RayMaximum, ASegmentInsideOneVoxelSamplesIt)
 {
   TestVolume volume({ 4, 4, 4 }, 9);

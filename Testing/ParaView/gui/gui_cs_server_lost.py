@@ -22,18 +22,13 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path[:0] = [HERE, os.path.join(os.path.dirname(HERE), "clientserver")]
+sys.path[:0] = [HERE, os.path.join(os.path.dirname(HERE), "clientserver"), os.path.dirname(HERE)]
 from gui_driver import GuiDriver  # noqa: E402
 from vtouch_pvserver import ParallelServer, port_is_free, wait_until  # noqa: E402
+from vtouch_testing import Check  # noqa: E402
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL: " + message, flush=True)
-    return condition
+CHECK = Check('GUI server lost')
+check = CHECK.true
 
 
 SESSION = """
@@ -103,7 +98,4 @@ def main():
 
 
 main()
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("OK")
+CHECK.finish()

@@ -15,18 +15,13 @@ import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path[:0] = [HERE, os.path.join(os.path.dirname(HERE), "clientserver")]
+sys.path[:0] = [HERE, os.path.join(os.path.dirname(HERE), "clientserver"), os.path.dirname(HERE)]
 from gui_driver import GuiDriver  # noqa: E402
 from vtouch_pvserver import ParallelServer, port_is_free, wait_until  # noqa: E402
+from vtouch_testing import Check  # noqa: E402
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL: " + message, flush=True)
-    return condition
+CHECK = Check('GUI server without the plugin')
+check = CHECK.true
 
 
 def extract_button(state):
@@ -76,7 +71,4 @@ def main():
 
 
 main()
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("OK")
+CHECK.finish()
