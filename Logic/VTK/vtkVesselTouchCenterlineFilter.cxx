@@ -30,9 +30,9 @@
 #include <itkImportImageFilter.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <new>
 #include <sstream>
@@ -141,8 +141,14 @@ vtouch::SectionForeground rangeForeground(vtkDataArray* scalars,
 }
 
 /// Runs the ITK filter; throws itk::ExceptionObject (itk::ProcessAborted when aborted).
+/// `stageSeconds` receives the filter's and the coder's stage times (mask, scale, the coder's
+/// stages, geometry).
 template<typename T>
-vtouch::QSkeleton skeletonize(vtkImageData* image, T* data, const Settings& s, int& factorUsed)
+vtouch::QSkeleton skeletonize(vtkImageData* image,
+  T* data,
+  const Settings& s,
+  int& factorUsed,
+  std::vector<std::pair<std::string, double>>& stageSeconds)
 {
   using Image = itk::Image<T, 3>;
   using Filter = vtouch::VoxelCodingSkeletonFilter<Image>;
@@ -190,6 +196,7 @@ vtouch::QSkeleton skeletonize(vtkImageData* image, T* data, const Settings& s, i
   filter->AddObserver(itk::ProgressEvent(), progress);
   filter->Update();
   factorUsed = static_cast<int>(filter->GetEffectiveDownsampleFactor());
+  stageSeconds = filter->GetRawSkeleton().stageSeconds;
   return filter->GetSkeleton();
 }
 
@@ -543,20 +550,21 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   {
     vtouch::QSkeleton skeleton;
     int factorUsed = 0;
+    std::vector<std::pair<std::string, double>> coderSeconds;
     void* data = scalars->GetVoidPointer(0);
     switch (scalars->GetDataType())
     {
       case VTK_FLOAT:
-        skeleton = skeletonize(input, static_cast<float*>(data), s, factorUsed);
+        skeleton = skeletonize(input, static_cast<float*>(data), s, factorUsed, coderSeconds);
         break;
       case VTK_UNSIGNED_CHAR:
-        skeleton = skeletonize(input, static_cast<unsigned char*>(data), s, factorUsed);
+        skeleton = skeletonize(input, static_cast<unsigned char*>(data), s, factorUsed, coderSeconds);
         break;
       case VTK_SHORT:
-        skeleton = skeletonize(input, static_cast<short*>(data), s, factorUsed);
+        skeleton = skeletonize(input, static_cast<short*>(data), s, factorUsed, coderSeconds);
         break;
       case VTK_UNSIGNED_SHORT:
-        skeleton = skeletonize(input, static_cast<unsigned short*>(data), s, factorUsed);
+        skeleton = skeletonize(input, static_cast<unsigned short*>(data), s, factorUsed, coderSeconds);
         break;
       default:
       {
@@ -566,7 +574,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
         {
           copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
         }
-        skeleton = skeletonize(input, copy.data(), s, factorUsed);
+        skeleton = skeletonize(input, copy.data(), s, factorUsed, coderSeconds);
       }
     }
     if (this->CancelRequested())
@@ -622,6 +630,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     vtouch::addRangeFieldData(
       output->GetFieldData(), lower, upper, this->AutomaticIntensityRange, std::string());
     vtouch::addStageSeconds(output->GetFieldData(), candidateSeconds);
+    vtouch::addStageSeconds(output->GetFieldData(), coderSeconds, "Coder");
     this->UpdateProgress(1.0);
   }
   catch (const itk::ProcessAborted&)
@@ -681,7 +690,10 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   if (input)
   {
     this->QuietErrors = true;
+    const auto extractStart = std::chrono::steady_clock::now();
     this->ExtractVolume(inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), own);
+    report.extractSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - extractStart).count();
     this->QuietErrors = false;
     std::string error;
     if (own->GetNumberOfLines() > 0 && !vtouch::PolyDataToQSkeleton().convert(own, skeleton, error))

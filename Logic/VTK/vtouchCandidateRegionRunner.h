@@ -208,14 +208,34 @@ inline void addRangeFieldData(vtkFieldData* fd,
 /// "CandidateGrowSeconds", "CandidateDepthSeconds", "CandidateTubularitySeconds",
 /// "CandidateNecksSeconds" (wall-clock seconds; the stages that ran).
 inline void addStageSeconds(vtkFieldData* fd,
-  const std::vector<std::pair<std::string, double>>& stageSeconds)
+  const std::vector<std::pair<std::string, double>>& stageSeconds,
+  const std::string& prefix = "Candidate")
 {
+  // One array per stage, <Prefix><Stage>Seconds; a stage's name keeps its letters and digits,
+  // each word capitalised ("trace(all)" -> TraceAllSeconds); a stage met twice adds up.
   for (const auto& [stage, seconds] : stageSeconds)
   {
+    std::string name;
+    bool wordStart = true;
+    for (char c : stage)
+    {
+      const auto u = static_cast<unsigned char>(c);
+      if (!std::isalnum(u))
+      {
+        wordStart = true;
+        continue;
+      }
+      name += wordStart ? static_cast<char>(std::toupper(u)) : c;
+      wordStart = false;
+    }
+    name = prefix + name + "Seconds";
+    if (vtkDataArray* existing = fd->GetArray(name.c_str()))
+    {
+      existing->SetComponent(0, 0, existing->GetComponent(0, 0) + seconds);
+      continue;
+    }
     vtkNew<vtkDoubleArray> a;
-    std::string name = stage;
-    name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
-    a->SetName(("Candidate" + name + "Seconds").c_str());
+    a->SetName(name.c_str());
     a->InsertNextValue(seconds);
     fd->AddArray(a);
   }

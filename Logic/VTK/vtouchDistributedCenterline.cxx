@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -60,7 +61,7 @@ double DistributedCenterline::peakResidentKiB()
 
 namespace
 {
-constexpr int kReportValues = 11;
+constexpr int kReportValues = 12;
 
 std::array<double, kReportValues> encodeReport(const PieceReport& r)
 {
@@ -74,7 +75,8 @@ std::array<double, kReportValues> encodeReport(const PieceReport& r)
     r.peakResident_kiB,
     r.fragments,
     r.rangeLower,
-    r.rangeUpper };
+    r.rangeUpper,
+    r.extractSeconds };
 }
 
 PieceReport decodeReport(const double* d)
@@ -89,6 +91,7 @@ PieceReport decodeReport(const double* d)
   r.fragments = d[8];
   r.rangeLower = d[9];
   r.rangeUpper = d[10];
+  r.extractSeconds = d[11];
   return r;
 }
 } // namespace
@@ -101,6 +104,10 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   double joinTolerance_mm,
   Result& result)
 {
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point t0)
+  { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  const Clock::time_point gatherStart = Clock::now();
   const int ranks = controller->GetNumberOfProcesses();
   const int rank = controller->GetLocalProcessId();
   const PieceOwnership ownership(pieceExtents(whole, ranks), whole);
@@ -128,6 +135,8 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   {
     return false;
   }
+  result.gatherSeconds = since(gatherStart);
+  const Clock::time_point stitchStart = Clock::now();
   std::vector<SkeletonFragment> all;
   for (int r = 0; r < ranks; ++r)
   {
@@ -146,6 +155,7 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   SkeletonStitcher stitcher;
   stitcher.joinTolerance_mm = joinTolerance_mm;
   result.skeleton = stitcher.stitch(all, result.stitch);
+  result.stitchSeconds = since(stitchStart);
   return true;
 }
 
@@ -213,6 +223,8 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
   peak->SetName("PiecePeakResidentKiB");
   vtkNew<vtkIntArray> fragments;
   fragments->SetName("PieceFragments");
+  vtkNew<vtkDoubleArray> extractSeconds;
+  extractSeconds->SetName("PieceExtractSeconds");
   // With AutomaticIntensityRange each rank estimates the range on its own piece: the same for a
   // binary mask (its midpoint), not always for a raw volume.
   bool rangesDiffer = false;
@@ -224,6 +236,7 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
     bytes->InsertNextValue(r.readerBytes);
     peak->InsertNextValue(r.peakResident_kiB);
     fragments->InsertNextValue(static_cast<int>(r.fragments));
+    extractSeconds->InsertNextValue(r.extractSeconds);
     const double scale = std::max({ 1.0, std::abs(r.rangeLower), std::abs(r.rangeUpper) });
     if (r.fragments > 0.0 && (std::abs(r.rangeLower - rangeUsed[0]) > 1e-6 * scale ||
                                std::abs(r.rangeUpper - rangeUsed[1]) > 1e-6 * scale))
@@ -235,6 +248,15 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
   fd->AddArray(bytes);
   fd->AddArray(peak);
   fd->AddArray(fragments);
+  fd->AddArray(extractSeconds);
+  for (const auto& [name, seconds] : { std::make_pair("DistributedGatherSeconds", result.gatherSeconds),
+         std::make_pair("DistributedStitchSeconds", result.stitchSeconds) })
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(seconds);
+    fd->AddArray(a);
+  }
   addIntValue(fd, "PieceIntensityRangesDiffer", rangesDiffer ? 1 : 0);
   return rangesDiffer;
 }

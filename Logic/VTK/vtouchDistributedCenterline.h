@@ -28,6 +28,7 @@ struct PieceReport
   double fragments = 0.0;        ///< fragments the rank kept
   double rangeLower = 0.0;       ///< the intensity range the rank's run used
   double rangeUpper = 0.0;
+  double extractSeconds = 0.0; ///< the rank's own extraction on its grown piece, wall s
 };
 
 class DistributedCenterline
@@ -54,6 +55,8 @@ public:
     StitchReport stitch;             ///< what stitching did (first rank only)
     std::vector<PieceReport> pieces; ///< every rank's report (first rank only)
     std::string error;               ///< a rank's fragments could not be read (first rank)
+    double gatherSeconds = 0.0;      ///< clip, encode and gather, as the first rank waits, s
+    double stitchSeconds = 0.0;      ///< decode and stitch on the first rank, s
   };
   /// Collective (every rank calls it once per run): clips `own` (this piece's skeleton, coded on
   /// its grown extent) to the piece's owned extent, gathers the fragments and reports on the
@@ -66,7 +69,8 @@ public:
     double joinTolerance_mm,
     Result& result);
   /// The stitch's and the ranks' reports as field data of the stitched output (the arrays
-  /// DistributedPieces, GhostMarginVoxels, Stitch*, Piece*). Returns whether a rank that found
+  /// DistributedPieces, GhostMarginVoxels, Stitch*, Piece*, DistributedGatherSeconds,
+  /// DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank that found
   /// vessels used another intensity range than `rangeUsed` (also PieceIntensityRangesDiffer).
   static bool addReports(vtkFieldData* fd,
     const Result& result,

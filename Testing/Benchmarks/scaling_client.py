@@ -12,8 +12,10 @@ sides, and measures what the user waits for, in order:
   read_s            the reader's UpdatePipeline (each rank reads its piece);
   centerline_s      VesselCenterline's UpdatePipeline, the reader already updated (the filter may
                     ask for more than the reader's piece, ghost layers: that re-read is in here);
-  stage_<name>_s    every "<Name>Seconds" array of the filter's field data (the filter's own stage
-                    times, as rank 0 reports them);
+  stage_<name>_s    every "<Name>Seconds" array of the filter's field data: the filter's and the
+                    coder's stage times on rank 0 (Coder<Stage>Seconds), and distributed: each
+                    rank's own extraction (PieceExtractSeconds, the slowest rank and
+                    stage_pieceExtract_s.rank<r>), the gather and the stitch on rank 0;
   deliver_s         binding the client's session: the skeleton appended on rank 0 and moved to the
                     client (vesseltouch/delivery.py);
   bytes_to_client   the delivered skeleton, marshalled as ParaView sends it
@@ -142,7 +144,12 @@ def measure(args, server, result):
         array = fd.GetArray(i)
         if name.endswith("Seconds") and array is not None and array.GetNumberOfTuples():
             stage = name[:-len("Seconds")]
-            result["stage_%s_s" % stage[0].lower() + stage[1:]] = float(array.GetValue(0))
+            key = "stage_%s_s" % (stage[0].lower() + stage[1:])
+            values = [float(array.GetComponent(t, 0)) for t in range(array.GetNumberOfTuples())]
+            result[key] = max(values)  # per-rank arrays (PieceExtractSeconds): the slowest rank
+            if len(values) > 1:
+                for rank, value in enumerate(values):
+                    result["%s.rank%d" % (key, rank)] = value
     message = fd.GetAbstractArray("ExtractionMessage")
     if message is not None and message.GetNumberOfValues() and message.GetValue(0):
         result["extraction_message"] = message.GetValue(0)

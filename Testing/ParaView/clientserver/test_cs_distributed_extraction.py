@@ -144,6 +144,15 @@ def distributed(references):
               "%s: every cut end found its partner" % name)
         check(field(data, "StitchBifurcationsWithoutBranch")[0][0] == 0,
               "%s: every bifurcation kept its branch" % name)
+        # Time per stage (issue 19 item 4): each rank's own extraction, the gather and the
+        # stitch, and the first rank's coder stages.
+        extract = field(data, "PieceExtractSeconds")
+        check(extract is not None and len(extract) == 2 and all(t[0] > 0.0 for t in extract),
+              "%s: each rank's extraction time is reported (%s)" % (name, extract))
+        timed = [field(data, n) for n in ("DistributedGatherSeconds", "DistributedStitchSeconds",
+                                          "CoderCoderAllSeconds", "CoderMaskSeconds")]
+        check(all(t is not None and t[0][0] >= 0.0 for t in timed) and timed[2][0][0] > 0.0,
+              "%s: the gather, stitch and coder stage times are reported (%s)" % (name, timed))
         check(topology(got) == topology(reference),
               "%s: the stitched skeleton has the built-in topology (%s vs %s)"
               % (name, topology(got), topology(reference)))
