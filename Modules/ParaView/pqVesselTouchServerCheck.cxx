@@ -51,7 +51,7 @@ pqVesselTouchServerCheck::pqVesselTouchServerCheck(QObject* parentObject)
 {
   // In the GUI this object watches the connection on the main thread: vesseltouch's Python
   // watch thread stays off (vesseltouch/connection_watch.py, GUI_WATCHES_ENV).
-  qputenv("VESSELTOUCH_GUI_WATCHES_CONNECTION", "1");
+  qputenv("VESSELTOUCH_CONNECTION_WATCHED_IN_GUI", "1");
   pqApplicationCore* core = pqApplicationCore::instance();
   pqServerManagerModel* model = core->getServerManagerModel();
   // preServerAdded: before pqCrashRecoveryBehavior connects to the new server (serverAdded).

@@ -149,7 +149,7 @@ class ConnectionWatch:
 #: Set by the VesselTouch panel in the GUI, where pqServer watches the connection and the panel
 #: reports the loss on the main thread (a thread of ours would call into the server manager
 #: while Qt's main thread uses it: no interpreter lock orders those).
-GUI_WATCHES_ENV = "VESSELTOUCH_GUI_WATCHES_CONNECTION"
+GUI_WATCHES_ENV = "VESSELTOUCH_CONNECTION_WATCHED_IN_GUI"
 
 
 def _process_env(name):
