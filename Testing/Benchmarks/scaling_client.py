@@ -38,40 +38,10 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "ParaView", "clientserver"))
-from vtouch_pvserver import ParallelServer, wait_until  # noqa: E402
+from vtouch_pvserver import ParallelServer, rank_processes, status_mib, wait_until  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
-
-
-def rank_processes(session_leader):
-    """{mpi rank: pid} of the pvserver processes started under `session_leader` (mpiexec)."""
-    ranks = {}
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open("/proc/%s/stat" % entry) as f:
-                stat = f.read()
-            comm = stat[stat.index("(") + 1:stat.rindex(")")]
-            fields = stat[stat.rindex(")") + 2:].split()
-            session = int(fields[3])
-            if comm != "pvserver" or session != session_leader:
-                continue
-            with open("/proc/%s/environ" % entry, "rb") as f:
-                env = dict(item.split(b"=", 1) for item in f.read().split(b"\0") if b"=" in item)
-            ranks[int(env.get(b"OMPI_COMM_WORLD_RANK", b"0"))] = int(entry)
-        except (OSError, ValueError):
-            continue  # a process that ended meanwhile
-    return ranks
-
-
-def status_mib(pid, key):
-    with open("/proc/%d/status" % pid) as f:
-        for line in f:
-            if line.startswith(key + ":"):
-                return int(line.split()[1]) / 1024.0
-    return float("nan")
 
 
 def marshalled_bytes(data):
@@ -111,7 +81,7 @@ def measure(args, server, result):
     simple.LoadPlugin(plugin, remote=False)
     import vesseltouch  # the plugin's Python package: importable once the plugin is loaded
     result["ranks"] = sm.ActiveConnection.GetNumberOfDataPartitions()
-    pids = wait_until(lambda: rank_processes(server.process.pid), 10.0)
+    pids = wait_until(lambda: rank_processes(server), 10.0)
     result["rank_pids_found"] = len(pids)
     for rank, pid in pids.items():
         result["baseline_rss_mib.rank%d" % rank] = status_mib(pid, "VmRSS")

@@ -19,54 +19,11 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [HERE, os.path.dirname(HERE)]
-from vtouch_pvserver import ParallelServer  # noqa: E402
+from vtouch_pvserver import (ParallelServer, rank_processes, status_mib,  # noqa: E402
+                             write_float_nrrd)
 
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-
-
-def write_nrrd(path, image):
-    dims = image.GetDimensions()
-    values = vtk_to_numpy(image.GetPointData().GetScalars()).astype("<f4")
-    with open(path, "wb") as f:
-        f.write(("NRRD0004\ntype: float\ndimension: 3\nsizes: %d %d %d\nspacings: 1 1 1\n"
-                 "encoding: raw\nendian: little\n\n" % dims).encode())
-        f.write(values.tobytes())
-
-
-def descendants_named(pid, name):
-    """The processes below `pid` (the mpiexec this script started) called `name`."""
-    children = {}
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open("/proc/%s/stat" % entry) as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-            children.setdefault(int(fields[1]), []).append(int(entry))
-        except OSError:
-            continue
-    found, todo = [], [pid]
-    while todo:
-        p = todo.pop()
-        for c in children.get(p, []):
-            todo.append(c)
-            try:
-                with open("/proc/%d/comm" % c) as f:
-                    if f.read().strip() == name:
-                        found.append(c)
-            except OSError:
-                pass
-    return sorted(found)
-
-
-def vm_hwm_kib(pid):
-    with open("/proc/%d/status" % pid) as f:
-        for line in f:
-            if line.startswith("VmHWM:"):
-                return int(line.split()[1])
-    return -1
 
 
 def measure(path, ranks, radius_mm):
@@ -83,7 +40,8 @@ def measure(path, ranks, radius_mm):
                                              DistributedExtraction=1)
         centerline.UpdatePipeline()
         data = sm.Fetch(centerline)
-        hwm = [vm_hwm_kib(p) for p in descendants_named(server.process.pid, "pvserver")]
+        ranks_pids = rank_processes(server)
+        hwm = [status_mib(ranks_pids[r], "VmHWM") for r in sorted(ranks_pids)]
         fd = data.GetFieldData()
 
         def values(name):
@@ -91,7 +49,7 @@ def measure(path, ranks, radius_mm):
             return None if a is None else [a.GetTuple(i) for i in range(a.GetNumberOfTuples())]
         print("ranks %d: %d paths, %d points; VmHWM per rank (MiB): %s"
               % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(),
-                 ", ".join("%.0f" % (h / 1024.0) for h in hwm)))
+                 ", ".join("%.0f" % h for h in hwm)))
         if values("PieceInputExtents"):
             for r, (e, b, p) in enumerate(zip(values("PieceInputExtents"),
                                              values("PieceReaderVoxelBytesRead"),
@@ -117,7 +75,7 @@ def main():
         n = args.size
         phantom = VesselPhantom(Dimensions=[n, n, n], RadiusFraction=0.02)  # noqa: F821
         path = os.path.join(folder, "tree.nrrd")
-        write_nrrd(path, sm.Fetch(phantom))
+        write_float_nrrd(path, sm.Fetch(phantom))
         simple.Delete(phantom)
         simple.Disconnect()
         print("tree phantom %d^3 float (%.0f MiB), radius %.1f voxels"

@@ -27,13 +27,12 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [HERE, os.path.dirname(HERE)]
-from vtouch_pvserver import run_connected  # noqa: E402
+from vtouch_pvserver import run_connected, write_float_nrrd  # noqa: E402
 from vtouch_skeleton_graph import farthest_point_voxels, graph  # noqa: E402
 from vtouch_testing import Check, plugin_path  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator  # noqa: E402
 
 PLUGIN = plugin_path()
@@ -49,16 +48,6 @@ FILTER = dict(AutomaticIntensityRange=0, LowerThreshold=550.0, DistributedExtrac
               LargestVesselRadius=RADIUS_FRACTION * N)
 
 
-def write_nrrd(path, image):
-    """`image` (1 mm voxels at the origin) as a raw little-endian float NRRD."""
-    dims = image.GetDimensions()
-    values = vtk_to_numpy(image.GetPointData().GetScalars()).astype("<f4")
-    with open(path, "wb") as f:
-        f.write(("NRRD0004\ntype: float\ndimension: 3\nsizes: %d %d %d\nspacings: 1 1 1\n"
-                 "encoding: raw\nendian: little\n\n" % dims).encode())
-        f.write(values.tobytes())
-
-
 def topology(g):
     return {"ends": g["ends"], "bifurcations": len(g["bifurcations"]), "cycles": g["cycles"]}
 
@@ -71,7 +60,7 @@ def builtin_references(folder):
         phantom = VesselPhantom(Dimensions=[N, N, N], RadiusFraction=RADIUS_FRACTION,  # noqa: F821
                                 Shape=shape)
         path = os.path.join(folder, "%s.nrrd" % name.replace(" ", "_"))
-        write_nrrd(path, sm.Fetch(phantom))
+        write_float_nrrd(path, sm.Fetch(phantom))
         volume = simple.OpenDataFile(path)
         centerline = VesselCenterline(Input=volume, **FILTER)  # noqa: F821
         centerline.UpdatePipeline()

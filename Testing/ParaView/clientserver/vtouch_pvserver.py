@@ -144,6 +144,44 @@ class ParallelServer:
         return False
 
 
+def rank_processes(server):
+    """{MPI rank: pid} of `server`'s pvserver processes (of its session, by the rank Open MPI
+    gives each in OMPI_COMM_WORLD_RANK)."""
+    ranks = {}
+    for pid in server.session_pids():
+        try:
+            with open("/proc/%d/comm" % pid) as f:
+                if f.read().strip() != "pvserver":
+                    continue
+            with open("/proc/%d/environ" % pid, "rb") as f:
+                env = dict(item.split(b"=", 1) for item in f.read().split(b"\0") if b"=" in item)
+            ranks[int(env.get(b"OMPI_COMM_WORLD_RANK", b"0"))] = pid
+        except (OSError, ValueError):
+            continue  # a process that ended meanwhile
+    return ranks
+
+
+def status_mib(pid, key):
+    """A /proc/<pid>/status memory line in MiB (key "VmHWM": the peak resident set, "VmRSS")."""
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith(key + ":"):
+                return int(line.split()[1]) / 1024.0
+    return float("nan")
+
+
+def write_float_nrrd(path, image):
+    """`image` (a vtkImageData of 1 mm voxels at the origin) as a raw little-endian float NRRD,
+    which VesselTouch's reader reads in pieces."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    dims = image.GetDimensions()
+    values = vtk_to_numpy(image.GetPointData().GetScalars()).astype("<f4")
+    with open(path, "wb") as f:
+        f.write(("NRRD0004\ntype: float\ndimension: 3\nsizes: %d %d %d\nspacings: 1 1 1\n"
+                 "encoding: raw\nendian: little\n\n" % dims).encode())
+        f.write(values.tobytes())
+
+
 def wait_until(condition, timeout_s, step_s=0.1):
     """Polls ``condition`` until it is true or ``timeout_s`` passed; returns its last value."""
     end = time.monotonic() + timeout_s
