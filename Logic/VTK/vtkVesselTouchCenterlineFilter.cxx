@@ -347,7 +347,9 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
   }
   else
   {
-    if (pieces > 1 && !this->WarnedUndistributed)
+    // Only when distribution was asked for: by default the first rank codes the whole volume
+    // in every mode, and saying so on every extraction would only open the Output Messages.
+    if (pieces > 1 && this->DistributedExtraction && !this->WarnedUndistributed)
     {
       this->WarnedUndistributed = true; // once per filter: every update asks again
       vtkWarningMacro("VesselCenterline: the raw seeded mode (AutomaticIntensityRange with "

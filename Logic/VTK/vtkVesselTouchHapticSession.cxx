@@ -18,6 +18,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -90,6 +91,8 @@ public:
   std::string ConnectionMessage;
   std::string SchedulerText;
   std::string DeviceName;
+  // SetDeliveredCenterline's producer (the client-side mover), to detach only that one.
+  vtkWeakPointer<vtkAlgorithm> DeliveredProducer;
 };
 
 vtkVesselTouchHapticSession::vtkVesselTouchHapticSession()
@@ -646,6 +649,25 @@ void vtkVesselTouchHapticSession::ReportConnectionLost(const char* message)
 int vtkVesselTouchHapticSession::GetConnectionLost()
 {
   return this->Internals->ConnectionLost ? 1 : 0;
+}
+
+void vtkVesselTouchHapticSession::SetDeliveredCenterline(vtkAlgorithm* producer)
+{
+  vtkInternals& in = *this->Internals;
+  if (producer)
+  {
+    in.DeliveredProducer = producer;
+    this->SetInputConnection(0, producer->GetOutputPort(0));
+    return;
+  }
+  int port = 0;
+  vtkAlgorithm* current =
+    this->GetNumberOfInputConnections(0) > 0 ? this->GetInputAlgorithm(0, 0, port) : nullptr;
+  if (current && current == in.DeliveredProducer.GetPointer())
+  {
+    this->SetInputConnection(0, nullptr);
+  }
+  in.DeliveredProducer = nullptr;
 }
 
 double* vtkVesselTouchHapticSession::GetStatistics()

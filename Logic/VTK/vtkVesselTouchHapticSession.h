@@ -194,6 +194,13 @@ public:
   void ReportConnectionLost(const char* message);
   /// 1 after ReportConnectionLost() (the skeleton is held, the input detached), else 0.
   int GetConnectionLost();
+  /// Connected to a pvserver, the centerline arrives through the delivery's ClientServerMoveData
+  /// (vesseltouch/delivery.py, pqVesselTouchCenterlineDelivery): plumbing, not a pipeline item.
+  /// It is connected here (the proxy's DeliveredCenterline property) rather than through Input,
+  /// whose proxies ParaView's GUI expects to be registered pipeline sources ("Some proxy is added
+  /// as input but was not registered" otherwise). nullptr detaches a producer set here, and only
+  /// that one (a built-in Input set since is kept).
+  void SetDeliveredCenterline(vtkAlgorithm* producer);
 
   // --- information ---
   /// nominal rate, achieved rate (Hz), ticks, overruns, skipped deadlines, period error p50, p99,

@@ -512,7 +512,7 @@ bool pqVesselTouchDockPanel::useDefaultCenterline()
   {
     return false;
   }
-  if (vtkSMPropertyHelper(session, "Input", /*quiet=*/true).GetAsProxy())
+  if (in.Binding->hasCenterline())
   {
     return true;
   }
@@ -584,8 +584,9 @@ void pqVesselTouchDockPanel::updateSessionStatus()
 void pqVesselTouchDockPanel::showDevice(const pqVesselTouchSessionStatus& status)
 {
   pqInternals& in = *this->Internals;
-  // A fault names the device's trouble in the device section too (the red line says it first).
-  in.Ui.deviceWidget->setFault(status.faultCode != 0 ? status.faultText : QString());
+  // A device fault names the device's trouble in the device section too (the red line says it
+  // first); a lost pvserver is not the device's, and only the red line says it.
+  in.Ui.deviceWidget->setFault(status.deviceFault() ? status.faultText : QString());
   if (!status.deviceOpen)
   {
     return; // keep showing the device last opened: its limits still bound the settings

@@ -195,10 +195,27 @@ void pqVesselTouchSessionBinding::setCenterline(vtkSMProxy* centerline, unsigned
   {
     return;
   }
-  vtkSMProxy* input =
-    this->Delivery.deliver(pqActiveObjects::instance().activeServer(), centerline, port);
+  pqServer* server = pqActiveObjects::instance().activeServer();
+  vtkSMProxy* input = this->Delivery.deliver(server, centerline, port);
+  if (input && pqVesselTouchCenterlineDelivery::isRemote(server))
+  {
+    // The delivery's mover is plumbing, not a registered pipeline source: it goes on
+    // DeliveredCenterline, never on Input (pqPipelineFilter reports an unregistered proxy on an
+    // Input in the Output Messages window, which then opens over the view).
+    this->writeProperties(
+      [&](vtkSMProxy* proxy) { vtkSMPropertyHelper(proxy, "DeliveredCenterline").Set(input); });
+    return;
+  }
   this->writeProperties(
     [&](vtkSMProxy* proxy) { vtkSMPropertyHelper(proxy, "Input").Set(input, port); });
+}
+
+bool pqVesselTouchSessionBinding::hasCenterline() const
+{
+  vtkSMProxy* session = this->proxy();
+  return session &&
+    (vtkSMPropertyHelper(session, "Input", /*quiet=*/true).GetAsProxy() ||
+      vtkSMPropertyHelper(session, "DeliveredCenterline", /*quiet=*/true).GetAsProxy());
 }
 
 void pqVesselTouchSessionBinding::copyCamera(pqRenderView* view)

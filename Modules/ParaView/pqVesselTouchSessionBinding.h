@@ -46,6 +46,8 @@ public:
   /// Connected to a pvserver, the centerline is delivered to the client first, where the
   /// session lives (pqVesselTouchCenterlineDelivery); call it again after a new extraction.
   void setCenterline(vtkSMProxy* centerline, unsigned int port);
+  /// Whether the session has a centerline (its Input, or the copy delivered from a pvserver).
+  bool hasCenterline() const;
   /// Copies the camera and size of `view` into the session's camera properties.
   void copyCamera(pqRenderView* view);
   /// Start/Stop commands. start() returns whether the session runs afterwards.

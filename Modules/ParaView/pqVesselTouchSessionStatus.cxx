@@ -1,5 +1,7 @@
 #include "pqVesselTouchSessionStatus.h"
 
+#include "vtkVesselTouchHapticSession.h"
+
 #include "vtouchAgentStateLayout.h"
 
 #include "vtkSMPropertyHelper.h"
@@ -128,4 +130,10 @@ double pqVesselTouchSessionStatus::deviceForceMagnitude_N() const
   return std::sqrt(this->deviceForce_N[0] * this->deviceForce_N[0] +
                    this->deviceForce_N[1] * this->deviceForce_N[1] +
                    this->deviceForce_N[2] * this->deviceForce_N[2]);
+}
+
+bool pqVesselTouchSessionStatus::deviceFault() const
+{
+  return this->faultCode != 0 &&
+    this->faultCode != vtkVesselTouchHapticSession::CONNECTION_LOST_FAULT;
 }

@@ -48,6 +48,9 @@ struct pqVesselTouchSessionStatus
   QString summary() const;
   /// Magnitude of deviceForce_N, N.
   double deviceForceMagnitude_N() const;
+  /// The fault is the device's or the loop's own (a device error, a non-finite force, a late
+  /// loop), not a lost pvserver (vtkVesselTouchHapticSession::CONNECTION_LOST_FAULT).
+  bool deviceFault() const;
 };
 
 #endif

@@ -80,7 +80,11 @@ class HapticSession(SessionCamera, SessionResults, HapticParameterAccess):
     def __init__(self, centerline=None, view=None, proxy=None, registrationName=None):
         self._delivery = None
         if proxy is None:
-            proxy = self._create_proxy(self._delivered(centerline), registrationName)
+            name, port = self._delivered(centerline)
+            proxy = self._create_proxy(port if name == "Input" else None, registrationName)
+            self.proxy = proxy
+            if name != "Input":
+                self._set_delivered(port)
         self.proxy = proxy
         # Connected to a pvserver: its loss zeroes the force at once (connection_watch.py).
         watch_connection(self._connection_lost)
@@ -109,14 +113,26 @@ class HapticSession(SessionCamera, SessionResults, HapticParameterAccess):
             simple.SetActiveSource(active)
 
     def _delivered(self, centerline):
-        """The port the session takes as input: the centerline itself built in; connected to a
-        pvserver, its copy delivered to the client, where the session lives (delivery.py)."""
+        """(property, port) the session takes the centerline through: Input, the centerline
+        itself, built in; connected to a pvserver, DeliveredCenterline, its copy delivered to
+        the client where the session lives (delivery.py). The delivery's mover is plumbing, not
+        a registered pipeline source, so it never goes on Input (ParaView's GUI reports an
+        unregistered proxy on an Input in its Output Messages)."""
         port = _centerline_port(centerline)
         if port is None or not is_remote():
             self._delivery = None
-            return port
+            return "Input", port
         self._delivery = CenterlineDelivery(port)
-        return self._delivery.port
+        return "DeliveredCenterline", self._delivery.port
+
+    def centerline_source(self):
+        """The proxy the session reads its centerline from (the delivered copy when connected
+        to a pvserver), or None."""
+        delivered = self.proxy.SMProxy.GetProperty("DeliveredCenterline")
+        if delivered is not None and delivered.GetNumberOfProxies() > 0:
+            return self._delivery.port if self._delivery is not None else \
+                servermanager._getPyProxy(delivered.GetProxy(0))
+        return self.proxy.Input
 
     # --- helpers ---------------------------------------------------------------------------
     def _set(self, **properties):
@@ -185,7 +201,18 @@ class HapticSession(SessionCamera, SessionResults, HapticParameterAccess):
     # --- scene -----------------------------------------------------------------------------
     def SetCenterline(self, centerline):
         """Uses this centerline (VesselCenterline, VesselPhantom or an output port)."""
-        self._set(Input=self._delivered(centerline))
+        name, port = self._delivered(centerline)
+        if name == "Input":
+            self._set(Input=port)
+        else:
+            self._set_delivered(port)
+
+    def _set_delivered(self, mover):
+        """The delivered copy (delivery.py's mover) as the session's centerline."""
+        prop = self.proxy.SMProxy.GetProperty("DeliveredCenterline")
+        prop.RemoveAllProxies()
+        prop.AddProxy(mover.SMProxy)
+        self.proxy.SMProxy.UpdateVTKObjects()
 
     def Bind(self, centerline, view=None):
         """SetCenterline(), then the camera of ``view`` (SetCameraFromView) or, without a view,

@@ -41,7 +41,7 @@ class SessionCamera:
     def ResetCamera(self, direction=(0.0, 0.0, -1.0), view_up=(0.0, 1.0, 0.0), size=None):
         """An orthographic camera looking at the centerline's centre along ``direction`` (the
         direction of projection), fitting the whole centerline. ``size``: (width, height) px."""
-        port = self.proxy.Input
+        port = self.centerline_source()
         if port is None:
             raise RuntimeError("ResetCamera: no centerline")
         port.UpdatePipeline()

@@ -2,6 +2,7 @@
 
 #include "pqVesselTouchCenterlineWorkflow.h"
 #include "pqVesselTouchDockPanel.h"
+#include "pqVesselTouchMessageRecorder.h"
 #include "pqVesselTouchOrientationLabels.h"
 #include "pqVesselTouchSeedPicker.h"
 #include "pqVesselTouchSessionBinding.h"
@@ -170,6 +171,7 @@ pqVesselTouchTestDriver::pqVesselTouchTestDriver(QWidget* panel, const QString& 
   , Panel(panel)
   , Directory(directory)
 {
+  pqVesselTouchMessageRecorder::install();
   auto* timer = new QTimer(this);
   timer->setInterval(kPollPeriod_ms);
   QObject::connect(timer, &QTimer::timeout, this, &pqVesselTouchTestDriver::poll);
@@ -654,5 +656,9 @@ QJsonObject pqVesselTouchTestDriver::state() const
     QJsonArray{
       status.agentPosition_mm[0], status.agentPosition_mm[1], status.agentPosition_mm[2] });
   state.insert("session", sessionState);
+  state.insert("messages", QJsonArray::fromStringList(pqVesselTouchMessageRecorder::messages()));
+  state.insert("output_messages",
+    QJsonArray::fromStringList(pqVesselTouchMessageRecorder::displayedMessages()));
+  state.insert("output_messages_visible", pqVesselTouchMessageRecorder::outputMessagesVisible());
   return state;
 }

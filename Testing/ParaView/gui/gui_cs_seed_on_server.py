@@ -159,6 +159,7 @@ def main():
               % (count, agent_pixels(after) if after else -1, traced))
         check(count > 20, "the agent cone shows over the server's MIP (%d pixels)" % count)
         gui.run("click", "stopButton")
+        gui.check_no_unregistered_input()
     finally:
         gui.finish()
         code = server.stop()

@@ -69,6 +69,7 @@ def main():
               % label(gui.state, "sessionStateLabel"))
         gui.screenshot(os.path.join(gui.work, "before_the_loss.png"))
 
+        gui.check_no_unregistered_input()  # the session bound to the delivered copy
         server.kill()
         said = gui.wait_until(lambda s: "was lost" in label(s, "errorLabel"), seconds=30)
         text = label(gui.state, "errorLabel")
@@ -78,6 +79,11 @@ def main():
         check("127.0.0.1:%d" % port in text, "it names the lost server (%r)" % text)
         check("force is zero" in text and "re-extract" in text,
               "it says the force is zero and what to do (%r)" % text)
+        fault = gui.widget("faultLabel")
+        check("visible" in fault, "the device section's fault line is in the panel's report")
+        check(not fault.get("visible", True) or "Device fault" not in fault.get("text", ""),
+              "the device section does not call a lost server a device fault (%r)"
+              % fault.get("text", ""))
         check(not gui.widget("stopButton").get("enabled", True)
               and gui.widget("startButton").get("enabled", False),
               "the session stopped (Start enabled, Stop disabled)")

@@ -55,6 +55,18 @@ class GuiDriver:
     def alive(self):
         return self.app.poll() is None
 
+    def check_no_unregistered_input(self):
+        """ParaView's GUI said nothing about an unregistered proxy on an input (pqPipelineFilter's
+        "Some proxy is added as input but was not registered"), and its Output Messages window,
+        which opens on such a report, stayed closed. Uses the state of the last command."""
+        self.command("state")
+        messages = self.state.get("messages", []) + self.state.get("output_messages", [])
+        unregistered = [m for m in messages if "was not registered" in m]
+        self.check(not unregistered, "no unregistered proxy on an input reported (%s)" % unregistered)
+        displayed = self.state.get("output_messages", [])
+        self.check(self.state.get("output_messages_visible") is False,
+                   "ParaView's Output Messages window stayed closed (it shows: %s)" % displayed[-5:])
+
     def wait_for_scene(self, seconds=150):
         flag = self.env["VESSELTOUCH_DONE_FLAG"]
         deadline = time.time() + seconds
