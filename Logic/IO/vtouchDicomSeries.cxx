@@ -218,6 +218,7 @@ public:
   }
 
   bool readsExtentsAlone() const override { return true; }
+  bool readsPartialSlicesAlone() const override { return false; } // one file per slice
 
 private:
   /// Reads one whole slice of the series into `target` (sliceBytes).

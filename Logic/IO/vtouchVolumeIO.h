@@ -136,6 +136,11 @@ public:
   /// True when readExtent() reads no more of the file than the extent needs (uncompressed voxels,
   /// DICOM slices); false when the file must be decoded whole (gzip, NIfTI intensity scaling).
   virtual bool readsExtentsAlone() const = 0;
+  /// True when a box narrower than a slice costs less than the whole slices it crosses (raw
+  /// voxels read row by row); false when a slice is read whole whatever part is asked for (one
+  /// DICOM file per slice). Decides whether a piece grown on its x or y faces is better copied
+  /// from memory and topped up box by box, or read again (vtouchExtentReuse.h).
+  virtual bool readsPartialSlicesAlone() const { return this->readsExtentsAlone(); }
   /// What the last read took from the files.
   const VolumeReadStatistics& lastReadStatistics() const { return this->LastRead; }
 

@@ -1,5 +1,7 @@
 #include "vtkVesselTouchImageReader.h"
 
+#include "vtouchExtentReuse.h"
+
 #include "vtouchVolumeIO.h"
 #include "vtouchVoxelValueRange.h"
 
@@ -210,7 +212,12 @@ int vtkVesselTouchImageReader::RequestData(vtkInformation*,
     vtkErrorMacro("VesselTouch reader: missing output image.");
     return 0;
   }
+  int previousExtent[6];
+  vtkSmartPointer<vtkDataArray> previous = this->ReusablePiece(output, previousExtent);
   output->Initialize();
+  this->LastPieceArray = nullptr;
+  this->LastBytesRead = this->LastBytesReused = 0.0;
+  this->LastFilesRead = 0;
   if (!this->Source)
   {
     return 1; // RequestInformation reported why
@@ -274,9 +281,22 @@ int vtkVesselTouchImageReader::RequestData(vtkInformation*,
     this->UpdateProgress(fraction);
     return !this->CheckAbort();
   };
+  vtouch::VoxelExtent previousBox;
+  for (int a = 0; a < 3 && previous; ++a)
+  {
+    previousBox.first[a] = static_cast<std::size_t>(previousExtent[2 * a]);
+    previousBox.last[a] = static_cast<std::size_t>(previousExtent[2 * a + 1]);
+  }
   try
   {
-    if (!this->Source->readExtent(box, scalars->GetVoidPointer(0), bytes, progress))
+    vtouch::ExtentReuseStatistics read;
+    const bool done = vtouch::readExtentReusing(*this->Source, box, scalars->GetVoidPointer(0),
+      bytes, previous ? previous->GetVoidPointer(0) : nullptr, previousBox, progress, read);
+    previous = nullptr; // the old piece goes as soon as it was copied
+    this->LastBytesRead = static_cast<double>(read.read.bytesRead);
+    this->LastBytesReused = static_cast<double>(read.bytesReused);
+    this->LastFilesRead = static_cast<int>(read.read.filesRead);
+    if (!done)
     {
       return 1; // aborted by the user: an empty output, no error
     }
@@ -294,7 +314,40 @@ int vtkVesselTouchImageReader::RequestData(vtkInformation*,
   output->GetPointData()->SetScalars(scalars);
   this->MarkGhostLayers(outInfo, output);
   this->AddReadStatistics(output);
+  this->RememberPiece(output);
   return 1;
+}
+
+vtkDataArray* vtkVesselTouchImageReader::ReusablePiece(vtkImageData* output, int extent[6]) const
+{
+  vtkDataArray* scalars = this->LastPieceArray;
+  if (!scalars || !this->Source || !this->Source->readsExtentsAlone() ||
+      scalars->GetMTime() != this->LastPieceArrayTime ||
+      this->OpenTime.GetMTime() != this->LastPieceOpenTime)
+  {
+    return nullptr; // gone, another file, a compressed one (each box would decode the whole
+                    // file), or voxels changed since
+  }
+  // Held by the output alone, the voxels are released before the new read, so that the peak
+  // memory is the new piece's alone, as without reuse. Held elsewhere too (a view's
+  // representation), they stay in memory anyway and copying from them costs nothing.
+  vtkDataArray* inOutput = output->GetPointData() ? output->GetPointData()->GetScalars() : nullptr;
+  const int ownHold = inOutput == scalars ? 1 : 0;
+  if (scalars->GetReferenceCount() <= ownHold)
+  {
+    return nullptr;
+  }
+  std::copy(this->LastPieceExtent, this->LastPieceExtent + 6, extent);
+  return scalars;
+}
+
+void vtkVesselTouchImageReader::RememberPiece(vtkImageData* output)
+{
+  vtkDataArray* scalars = output->GetPointData()->GetScalars();
+  this->LastPieceArray = scalars;
+  this->LastPieceArrayTime = scalars ? scalars->GetMTime() : 0;
+  this->LastPieceOpenTime = this->OpenTime.GetMTime();
+  output->GetExtent(this->LastPieceExtent);
 }
 
 void vtkVesselTouchImageReader::MarkGhostLayers(vtkInformation* outInfo, vtkImageData* output)
@@ -357,6 +410,10 @@ void vtkVesselTouchImageReader::AddReadStatistics(vtkImageData* output)
   vtkNew<vtkDoubleArray> bytes;
   bytes->SetName("ReaderVoxelBytesRead");
   bytes->InsertNextValue(this->GetLastReadBytes());
+  vtkNew<vtkDoubleArray> reused;
+  reused->SetName("ReaderVoxelBytesReused");
+  reused->InsertNextValue(this->GetLastReusedBytes());
+  output->GetFieldData()->AddArray(reused);
   vtkNew<vtkIntArray> files;
   files->SetName("ReaderFilesRead");
   files->InsertNextValue(this->GetLastReadFiles());
@@ -375,12 +432,17 @@ int vtkVesselTouchImageReader::GetReadsPiecesAlone()
 
 double vtkVesselTouchImageReader::GetLastReadBytes()
 {
-  return this->Source ? static_cast<double>(this->Source->lastReadStatistics().bytesRead) : 0.0;
+  return this->LastBytesRead;
+}
+
+double vtkVesselTouchImageReader::GetLastReusedBytes()
+{
+  return this->LastBytesReused;
 }
 
 int vtkVesselTouchImageReader::GetLastReadFiles()
 {
-  return this->Source ? static_cast<int>(this->Source->lastReadStatistics().filesRead) : 0;
+  return this->LastFilesRead;
 }
 
 void vtkVesselTouchImageReader::PrintSelf(ostream& os, vtkIndent indent)

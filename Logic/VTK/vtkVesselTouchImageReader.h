@@ -13,12 +13,18 @@
 // uncompressed NIfTI, NRRD or MetaImage file, the files of its slices of a DICOM series. A
 // compressed file (.nii.gz, gzip NRRD, compressed MetaImage) is decoded whole by each rank and cut
 // (a warning says so once per file); GetReadsPiecesAlone() tells which case a file is.
+// A piece asked for again with a larger extent (a distributed VesselCenterline's piece grown by
+// its ghost margin, after the view showed the piece) copies the voxels it holds and reads only the
+// rest, when the piece it holds is also held elsewhere (a view's representation): then it stays
+// in memory anyway and copying from it adds nothing to the peak. Held only by this reader's
+// output, it is released first and the new extent read whole, as before.
 #ifndef vtkVesselTouchImageReader_h
 #define vtkVesselTouchImageReader_h
 
 #include "vtkImageAlgorithm.h"
 #include "vtkNew.h"                    // for vtkNew
 #include "vtkTimeStamp.h"              // for vtkTimeStamp
+#include "vtkWeakPointer.h"            // for vtkWeakPointer
 #include "vtkVesselTouchLogicModule.h" // for export macro
 
 #include <memory> // for std::unique_ptr
@@ -80,6 +86,9 @@ public:
   /// file), and the number of files it opened for voxels. For tests and benchmarks of streaming.
   double GetLastReadBytes();
   int GetLastReadFiles();
+  /// After an update: voxel bytes the last update copied from the piece it had read before
+  /// instead of reading them again (see "Streaming" above: a grown piece after the piece).
+  double GetLastReusedBytes();
 
 protected:
   vtkVesselTouchImageReader();
@@ -98,9 +107,15 @@ private:
   /// Computes the read voxels' range and finite range and stores them in VTK's range cache of
   /// `scalars` (vtouchVoxelValueRange.h).
   void CacheValueRange(vtkDataArray* scalars, vtouch::VoxelType type);
-  /// The last read's statistics as field data: ReaderVoxelBytesRead, ReaderFilesRead,
-  /// ReaderReadsPiecesAlone (one value each).
+  /// The last read's statistics as field data: ReaderVoxelBytesRead, ReaderVoxelBytesReused,
+  /// ReaderFilesRead, ReaderReadsPiecesAlone (one value each).
   void AddReadStatistics(vtkImageData* output);
+  /// The voxels of this reader's last read, when they may be copied into the next one (same
+  /// file, untouched, held by something else than `output`: see "Streaming" above), else null;
+  /// `extent` gets their extent.
+  vtkDataArray* ReusablePiece(vtkImageData* output, int extent[6]) const;
+  /// Remembers what `output` now holds, for ReusablePiece.
+  void RememberPiece(vtkImageData* output);
   /// Opens the file (header only); empty on success, else the reason.
   std::string Open();
   void UpdateSeriesList();
@@ -113,6 +128,16 @@ private:
   vtkTimeStamp OpenTime;          // when Open() last ran; reopened only after a property change
   bool WarnedWholeDecode = false; // the compressed-file warning, once per opened file
   std::unique_ptr<vtouch::VolumeSource> Source;
+  // The last read: what it took from the file and from the piece before.
+  double LastBytesRead = 0.0;
+  double LastBytesReused = 0.0;
+  int LastFilesRead = 0;
+  // The voxels the last read left in the output. Weak: this reader never keeps them alive
+  // itself (the output, a view's representation or a downstream filter may).
+  vtkWeakPointer<vtkDataArray> LastPieceArray;
+  vtkMTimeType LastPieceArrayTime = 0;
+  vtkMTimeType LastPieceOpenTime = 0;
+  int LastPieceExtent[6] = { 0, -1, 0, -1, 0, -1 };
   vtkNew<vtkStringArray> SeriesUIDs;
   vtkNew<vtkStringArray> SeriesLines;
 };

@@ -12,7 +12,10 @@ What is checked, for an uncompressed NRRD, NIfTI and MetaImage file, a DICOM ser
   files stream (ReaderReadsPiecesAlone: 0 for .nii.gz, which decodes the whole file per piece);
 - the origin, spacing and direction of a piece are those of the whole volume;
 - with one ghost level asked, each piece grows by one layer inside the volume and marks exactly
-  that layer as duplicate points (vtkGhostType), as a distributed filter needs.
+  that layer as duplicate points (vtkGhostType), as a distributed filter needs;
+- a piece asked for again grown by ghost levels copies the voxels it holds when a view holds them
+  too (ReaderVoxelBytesReused) and reads only the rest; held by the reader alone or compressed,
+  it reads everything again.
 Exits non-zero on any failure.
 """
 
@@ -25,6 +28,7 @@ import numpy as np
 
 from paraview.simple import Delete, LoadPlugin, OpenDataFile
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtouch_testing import Check, plugin_path, test_volume_writer
 
 LoadPlugin(plugin_path(), ns=globals())
@@ -118,14 +122,20 @@ def check_pieces(name, path, streams, dicom=False):
                                for i in range(3) for j in range(3)]
             check(np.allclose(piece_direction, direction),
                   "%s: piece %d/%d direction differs" % (name, r, n))
+            # What the previous piece held and is still held here (`values` of the last round
+            # keeps it) is copied, not read again (ReaderVoxelBytesReused); the rest is read.
+            reused = field(piece, 'ReaderVoxelBytesReused')
             if streams and not dicom:
-                check(field(piece, 'ReaderVoxelBytesRead') == values.size * item,
-                      "%s: piece %d/%d read %d bytes for %d voxel bytes"
-                      % (name, r, n, field(piece, 'ReaderVoxelBytesRead'), values.size * item))
+                check(field(piece, 'ReaderVoxelBytesRead') + reused == values.size * item,
+                      "%s: piece %d/%d read %d bytes and copied %d for %d voxel bytes"
+                      % (name, r, n, field(piece, 'ReaderVoxelBytesRead'), reused,
+                         values.size * item))
             if dicom:
-                check(field(piece, 'ReaderFilesRead') == e[5] - e[4] + 1,
-                      "%s: piece %d/%d opened %d files for %d slices"
-                      % (name, r, n, field(piece, 'ReaderFilesRead'), e[5] - e[4] + 1))
+                slice_bytes = (e[1] - e[0] + 1) * (e[3] - e[2] + 1) * item
+                check(field(piece, 'ReaderFilesRead') + reused // slice_bytes == e[5] - e[4] + 1
+                      and reused % slice_bytes == 0,
+                      "%s: piece %d/%d opened %d files and copied %d bytes for %d slices"
+                      % (name, r, n, field(piece, 'ReaderFilesRead'), reused, e[5] - e[4] + 1))
             if not streams:
                 check(field(piece, 'ReaderVoxelBytesRead') == whole.size * item,
                       "%s: a compressed piece should decode the whole file" % name)
@@ -133,6 +143,49 @@ def check_pieces(name, path, streams, dicom=False):
         check(covered.min() == 1 and covered.max() == 1,
               "%s: %d pieces do not tile the volume once (coverage %d..%d)"
               % (name, n, covered.min(), covered.max()))
+    Delete(proxy)
+
+
+def check_grown_piece_reuse(name, path, streams):
+    """A piece asked for again grown by ghost levels (a distributed VesselCenterline after the view
+    showed the piece): held elsewhere too (a representation's shallow copy), the voxels it holds
+    are copied and only the rest is read; held by the reader's output alone, or from a compressed
+    file, everything is read again (the peak memory stays the new piece's)."""
+    proxy, reader = reader_for(path)
+    reader.UpdatePiece(0, 1, 0)
+    whole = as_array(reader.GetOutput()).copy()
+    item = whole.dtype.itemsize
+
+    def voxels(e):
+        return (e[1] - e[0] + 1) * (e[3] - e[2] + 1) * (e[5] - e[4] + 1)
+
+    for held in (True, False):
+        reader.UpdatePiece(0, 2, 0)
+        piece = reader.GetOutput().GetExtent()
+        view_copy = vtkImageData()
+        if held:
+            view_copy.ShallowCopy(reader.GetOutput())  # what a view's representation keeps
+        reader.UpdatePiece(0, 2, 2)
+        grown = reader.GetOutput()
+        e = grown.GetExtent()
+        check(voxels(e) > voxels(piece), "%s: the grown piece %s is larger than %s"
+              % (name, e, piece))
+        reused = field(grown, "ReaderVoxelBytesReused")
+        read = field(grown, "ReaderVoxelBytesRead")
+        if held and streams:
+            check(reused == voxels(piece) * item and read == (voxels(e) - voxels(piece)) * item,
+                  "%s: the grown piece copied the %d bytes held and read only the other %d "
+                  "(copied %d, read %d)" % (name, voxels(piece) * item,
+                                            (voxels(e) - voxels(piece)) * item, reused, read))
+        else:
+            check(reused == 0, "%s: nothing copied when %s (copied %d)"
+                  % (name, "the piece was held only by the reader" if streams else
+                     "the file is compressed", reused))
+        check(np.array_equal(as_array(grown), whole[e[4]:e[5] + 1, e[2]:e[3] + 1, e[0]:e[1] + 1]),
+              "%s: the grown piece (%s) holds the file's values" % (name, "held" if held else
+                                                                     "not held"))
+        del view_copy
+        reader.UpdatePiece(1, 2, 0)  # another piece in between: the next round starts afresh
     Delete(proxy)
 
 
@@ -146,6 +199,8 @@ def main():
             subprocess.run([test_volume_writer(), "volume", path, "oblique", "int16"] + size, check=True,
                            stdout=subprocess.DEVNULL)
             check_pieces(name, path, streams)
+            if name in ("v.nrrd", "v.nii.gz"):
+                check_grown_piece_reuse(name, path, streams)
         series = os.path.join(tmp, "dicom")
         os.makedirs(series)
         subprocess.run([test_volume_writer(), "dicom", series, "1.2.826.0.1.3680043.2.1125.91", "oblique",
