@@ -77,6 +77,21 @@ def haptic_phase(session, seconds, render_view=None):
     return out, frames
 
 
+def show_mip(vesseltouch, reader, args, result):
+    """A render view showing the volume as a MIP, rendered and composited on the server (the image
+    sent to the client); the first frame's time in result["first_frame_s"]."""
+    view = simple.CreateView("RenderView")
+    view.ViewSize = [args.view_px, args.view_px]
+    view.RemoteRenderThreshold = 0.0
+    view.OrientationAxesVisibility = 0
+    vesseltouch.ShowAsMIP(reader, view)
+    view.ResetCamera()
+    t = time.perf_counter()
+    simple.Render(view)
+    result["first_frame_s"] = time.perf_counter() - t
+    return view
+
+
 def measure(args, server, result):
     plugin = os.path.abspath(args.plugin)
     simple.LoadPlugin(plugin, remote=True)
@@ -100,15 +115,7 @@ def measure(args, server, result):
         # The GUI's order: the volume shown as a MIP (rendered on the server) before Extract; the
         # view's representation then holds each rank's piece, which the reader copies from when
         # the filter asks for the piece grown by its ghost margin (Docs/READERS.md).
-        view = simple.CreateView("RenderView")
-        view.ViewSize = [args.view_px, args.view_px]
-        view.RemoteRenderThreshold = 0.0
-        view.OrientationAxesVisibility = 0
-        vesseltouch.ShowAsMIP(reader, view)
-        view.ResetCamera()
-        t = time.perf_counter()
-        simple.Render(view)
-        result["first_frame_s"] = time.perf_counter() - t
+        view = show_mip(vesseltouch, reader, args, result)
 
     centerline = simple.VesselCenterline(Input=reader, AutomaticIntensityRange=0,
                                          LowerThreshold=args.lower, UpperThreshold=args.upper,
@@ -147,15 +154,7 @@ def measure(args, server, result):
     session.SetDevice("simulated")
     idle, _ = haptic_phase(session, args.seconds)
     if view is None:
-        view = simple.CreateView("RenderView")
-        view.ViewSize = [args.view_px, args.view_px]
-        view.RemoteRenderThreshold = 0.0  # rendered and composited on the server, the image sent
-        view.OrientationAxesVisibility = 0
-        vesseltouch.ShowAsMIP(reader, view)
-        view.ResetCamera()
-        t = time.perf_counter()
-        simple.Render(view)
-        result["first_frame_s"] = time.perf_counter() - t
+        view = show_mip(vesseltouch, reader, args, result)
     render, frames = haptic_phase(session, args.seconds, view)
     result["frames_rendered"] = frames
     for phase, stats in (("idle", idle), ("render", render)):

@@ -3,6 +3,8 @@
 // layouts land on the same (i, j, k).
 #include "vtouchExtentReuse.h"
 
+#include "vtouchTestExtents.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -10,22 +12,10 @@
 #include <vector>
 
 using vtouch::VoxelExtent;
+using vtouch::test::box;
 
 namespace
 {
-VoxelExtent box(std::size_t i0,
-  std::size_t i1,
-  std::size_t j0,
-  std::size_t j1,
-  std::size_t k0,
-  std::size_t k1)
-{
-  VoxelExtent e;
-  e.first = { { i0, j0, k0 } };
-  e.last = { { i1, j1, k1 } };
-  return e;
-}
-
 /// A voxel's value: its index in a 32^3 volume, so every copy can be checked by position.
 std::uint32_t code(std::size_t i, std::size_t j, std::size_t k)
 {

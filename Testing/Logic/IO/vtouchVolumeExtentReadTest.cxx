@@ -5,6 +5,7 @@
 // right.
 #include "vtouchVolumeIO.h"
 
+#include "vtouchTestExtents.h"
 #include "vtouchTestVolumes.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +19,7 @@
 
 namespace fs = std::filesystem;
 using vtouch::VoxelExtent;
+using vtouch::test::box;
 using vtouch::test::TestGeometry;
 
 namespace
@@ -38,19 +40,6 @@ protected:
 
   fs::path Dir;
 };
-
-VoxelExtent box(std::size_t i0,
-  std::size_t i1,
-  std::size_t j0,
-  std::size_t j1,
-  std::size_t k0,
-  std::size_t k1)
-{
-  VoxelExtent e;
-  e.first = { { i0, j0, k0 } };
-  e.last = { { i1, j1, k1 } };
-  return e;
-}
 
 /// The boxes a parallel reader asks for: a corner, whole rows, whole slices, one voxel, the whole.
 std::vector<VoxelExtent> testBoxes(const TestGeometry& g)
