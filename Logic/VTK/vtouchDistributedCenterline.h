@@ -72,8 +72,9 @@ public:
   /// The stitch's and the ranks' reports as field data of the stitched output (the arrays
   /// DistributedPieces, GhostMarginVoxels, Stitch* (StitchDuplicatesRemoved, StitchPointsDropped
   /// among them), Piece*, DistributedGatherSeconds,
-  /// DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank that found
-  /// vessels used another intensity range than `rangeUsed` (also PieceIntensityRangesDiffer).
+  /// DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank
+  /// that found vessels used another intensity range than `rangeUsed` (also
+  /// PieceIntensityRangesDiffer).
   static bool addReports(vtkFieldData* fd,
     const Result& result,
     int ghostMarginVoxels,

@@ -118,8 +118,8 @@ def components(points, link=4.0):
 def builtin_reference(path):
     """The built-in graph and, per reference point, how far it moves when the run is rooted at
     another point (seeded at each part's two far ends, its lowest x and its farthest from the
-    face, and where each rank's grown piece cuts it): the coder's own root dependence there. A seeded run codes the seed's part only, so
-    each rerooted run is compared on its own part."""
+    face, and where each rank's grown piece cuts it): the coder's own root dependence there. A
+    seeded run codes the seed's part only, so each rerooted run is compared on its own part."""
     simple.LoadPlugin(PLUGIN, remote=False, ns=globals())
     volume = simple.OpenDataFile(path)
     centerline = VesselCenterline(Input=volume, **FILTER)  # noqa: F821
