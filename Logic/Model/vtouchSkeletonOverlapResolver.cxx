@@ -222,21 +222,52 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
   // has a copy (a face), the lower piece's side decides (the midpoint rule, smoothed along its
   // fragment) and the other side takes the complement at its copy's place on the deciding
   // fragment, so that the two decisions meet without a gap. Where several pieces have copies
-  // (an edge or a corner) a point is kept when it wins against each.
+  // (an edge or a corner) the copies' centroid decides (winsAll).
   std::vector<std::vector<signed char>> keep(F);
   std::vector<std::vector<long>> toward(F);
-  const auto winsAll = [&](std::size_t g, std::size_t i, long& loser)
+  // With several pieces' copies (an edge or a corner) the pairwise rule can drop them all (each
+  // loses to one other): the copies' centroid decides instead (the same point from every copy,
+  // up to where each one's nearest copies lie): its owner keeps its copy; when its owner has
+  // none, the lowest piece does.
+  const auto winsAll = [&](std::size_t g, std::size_t i, long& winner)
   {
-    loser = -1;
-    for (const Copy& c : copies[g][i])
+    winner = -1;
+    const std::vector<Copy>& c = copies[g][i];
+    const int own = fragments[g].piece;
+    if (c.size() == 1)
     {
-      if (!wins(fragments[g].points[i].position_World_mm, fragments[g].piece, c.position, c.piece))
+      const bool kept =
+        wins(fragments[g].points[i].position_World_mm, own, c[0].position, c[0].piece);
+      winner = kept ? -1 : c[0].fragment;
+      return kept;
+    }
+    Vec3 centroid = fragments[g].points[i].position_World_mm;
+    const Copy* lowest = nullptr;
+    for (const Copy& x : c)
+    {
+      centroid = centroid + x.position;
+      lowest = !lowest || x.piece < lowest->piece ? &x : lowest;
+    }
+    centroid = centroid * (1.0 / static_cast<double>(c.size() + 1));
+    const int o = ownership_.owner(frame_.toIndex(centroid));
+    if (o == own)
+    {
+      return true;
+    }
+    for (const Copy& x : c)
+    {
+      if (x.piece == o)
       {
-        loser = c.fragment; // the nearest copy that wins
+        winner = x.fragment;
         return false;
       }
     }
-    return true;
+    if (own < lowest->piece)
+    {
+      return true;
+    }
+    winner = lowest->fragment;
+    return false;
   };
   for (std::size_t g = 0; g < F; ++g)
   {

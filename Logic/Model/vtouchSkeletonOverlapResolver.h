@@ -48,10 +48,12 @@ struct OverlapRun
 
 /// Which copy wins: a point p of piece r and its copy q of piece s are compared at their
 /// midpoint m (the same for both: the decision is symmetric): the piece owning m wins; when m
-/// belongs to neither (a corner), the lower piece. A point is dropped when any other piece's
-/// copy wins against it, so a point is dropped only where a copy within the reach is kept or is
-/// itself dropped for a nearer winner: no stretch is lost by construction (the stitcher counts
-/// any that would be: StitchReport::pointsDropped).
+/// belongs to neither (a corner), the lower piece. With copies of several pieces (an edge or a
+/// corner) their centroid decides the same way (pairwise, all could lose). At a face the lower
+/// piece's fragment decides (smoothed over 7 points) and the other takes the complement. A point is
+/// dropped when any other piece's copy wins against it, so a point is dropped only where a copy
+/// within the reach is kept or is itself dropped for a nearer winner: no stretch is lost by
+/// construction (the stitcher counts any that would be: StitchReport::pointsDropped).
 class SkeletonOverlapResolver
 {
 public:

@@ -197,14 +197,15 @@ TEST(SkeletonOverlap, ABranchHangingOnTheDroppedCopyHangsOnTheKeptOne)
 
 TEST(SkeletonOverlap, PointsDroppedCountsAStretchNoPieceKept)
 {
-  // A thin middle piece (x in [10, 11)): piece 0's copy at x = 9.6 loses to piece 1's at 10.9
-  // (their midpoint is piece 1's), which loses to piece 2's at 12.2: piece 0's copy is 2.6 from
-  // what is kept. Not a network the coder makes (copies 1.3 apart), but the count must see it.
+  // A thin middle piece (x in [10, 11)): piece 0's copy at x = 9.7 loses to piece 1's at 10.95
+  // (their midpoint is piece 1's); piece 1's, with copies of both others, loses to piece 2's at
+  // 12.4 (the three copies' centroid, 11.02, is piece 2's): piece 0's copy is 2.7 from what is
+  // kept. Not a network the coder makes (copies 1.25-1.45 apart), but the count must see it.
   const VoxelExtent6 whole{ 0, 21, 0, 20, 0, 10 };
   const PieceOwnership three(
     { { 0, 10, 0, 20, 0, 10 }, { 10, 11, 0, 20, 0, 10 }, { 11, 21, 0, 20, 0, 10 } }, whole);
   std::vector<QSkeleton> perPiece(3);
-  const double x[3] = { 9.6, 10.9, 12.2 };
+  const double x[3] = { 9.7, 10.95, 12.4 };
   for (int r = 0; r < 3; ++r)
   {
     std::vector<SkeletonPoint> points;
@@ -224,5 +225,40 @@ TEST(SkeletonOverlap, PointsDroppedCountsAStretchNoPieceKept)
     named = named || note.find("a stretch no piece kept") != std::string::npos;
   }
   EXPECT_TRUE(named);
+}
+} // namespace
+
+namespace
+{
+TEST(SkeletonOverlap, AVesselAlongTheEdgeOfFourPiecesIsKeptOnce)
+{
+  // Four pieces meet along the line x = y = 10; each codes a vessel along it a few tenths of a
+  // voxel off, in its own direction (pieces 0..3: lower-left, lower-right, upper-left, upper-right
+  // in x, y). Every point has three copies: a point is kept when it wins against each.
+  const VoxelExtent6 whole{ 0, 20, 0, 20, 0, 20 };
+  const PieceOwnership four({ { 0, 10, 0, 10, 0, 20 },
+                              { 10, 20, 0, 10, 0, 20 },
+                              { 0, 10, 10, 20, 0, 20 },
+                              { 10, 20, 10, 20, 0, 20 } },
+    whole);
+  const double offsets[4][2] = { { 0.3, 0.2 }, { -0.3, 0.25 }, { 0.2, -0.3 }, { -0.25, -0.2 } };
+  std::vector<QSkeleton> perPiece(4);
+  for (int r = 0; r < 4; ++r)
+  {
+    std::vector<SkeletonPoint> points;
+    for (int i = 0; i < 19; ++i)
+    {
+      points.push_back(point(10.0 + offsets[r][0], 10.0 + offsets[r][1], 1.0 + i));
+    }
+    perPiece[static_cast<std::size_t>(r)].paths.push_back(path(0, points));
+  }
+  StitchReport report;
+  const QSkeleton s = clipAndStitch(perPiece, four, report);
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(s.paths.size(), 1u);
+  EXPECT_EQ(freeEnds(s), 2);
+  EXPECT_EQ(report.cutEndsUnmatched, 0);
+  EXPECT_EQ(report.pointsDropped, 0);
+  EXPECT_EQ(s.pointCount(), 19u); // one copy of each point
 }
 } // namespace
