@@ -280,8 +280,8 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
     {
       const std::vector<Copy>& c = copies[g][i];
       deciding[i] = c.size() == 1 && c[0].piece > f.piece ? 1 : 0;
-      long loser = -1;
-      raw[i] = c.empty() || winsAll(g, i, loser) ? 1 : 0;
+      long winner = -1;
+      raw[i] = c.empty() || winsAll(g, i, winner) ? 1 : 0;
     }
     keep[g] = majority(raw, deciding);
   }
@@ -303,9 +303,9 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
       }
       if (!keep[g][i])
       {
-        long loser = -1;
-        winsAll(g, i, loser);
-        toward[g][i] = loser >= 0 ? loser : c.front().fragment;
+        long winner = -1;
+        winsAll(g, i, winner);
+        toward[g][i] = winner >= 0 ? winner : c.front().fragment;
       }
     }
   }
