@@ -78,6 +78,16 @@ int PieceOwnership::owner(const Vec3& index) const
   return nearest;
 }
 
+bool PieceOwnership::withinBand(std::size_t r, const Vec3& index, double band) const
+{
+  const VoxelExtent6& e = pieces_[r];
+  if (e[1] < e[0] || e[3] < e[2] || e[5] < e[4])
+  {
+    return false;
+  }
+  return distanceToBox(r, index) <= band;
+}
+
 int GhostMarginRule::voxels(const std::array<double, 3>& spacing_mm) const
 {
   const double voxel_mm = std::max(1e-12, *std::min_element(spacing_mm.begin(), spacing_mm.end()));

@@ -42,6 +42,9 @@ public:
   /// The owner of a continuous index position; a position in no half-open box (a split that
   /// leaves gaps) goes to the nearest box. -1 only when there is no non-empty piece.
   int owner(const Vec3& index) const;
+  /// Whether `index` lies within `band` voxels of piece r's owned box (inside it included): the
+  /// overlap band a piece sends beyond its shared faces (kOverlapBandVoxels).
+  bool withinBand(std::size_t r, const Vec3& index, double band) const;
 
 private:
   /// Distance from `index` to piece r's half-open box along each axis (0 inside).

@@ -5,11 +5,21 @@ namespace vtouch
 
 SkeletonClipper::SkeletonClipper(const PieceOwnership& ownership,
   const IndexFrame& frame,
-  int piece)
+  int piece,
+  double band_voxels)
   : ownership_(ownership)
   , frame_(frame)
   , piece_(piece)
+  , band_voxels_(band_voxels)
 {
+}
+
+bool SkeletonClipper::sends(const SkeletonPoint& p) const
+{
+  const Vec3 index = frame_.toIndex(p.position_World_mm);
+  return ownership_.owner(index) == piece_ ||
+         (band_voxels_ > 0.0 &&
+           ownership_.withinBand(static_cast<std::size_t>(piece_), index, band_voxels_));
 }
 
 int SkeletonClipper::ownerOf(const SkeletonPoint& p) const
@@ -51,20 +61,22 @@ std::vector<SkeletonFragment> SkeletonClipper::clip(const QSkeleton& skeleton) c
   {
     const std::size_t n = path.points.size();
     std::vector<int> owners(n);
+    std::vector<char> sent(n);
     for (std::size_t i = 0; i < n; ++i)
     {
       owners[i] = ownerOf(path.points[i]);
+      sent[i] = sends(path.points[i]) ? 1 : 0;
     }
     std::size_t i = 0;
     while (i < n)
     {
-      if (owners[i] != piece_)
+      if (!sent[i])
       {
         ++i;
         continue;
       }
       std::size_t j = i;
-      while (j + 1 < n && owners[j + 1] == piece_)
+      while (j + 1 < n && sent[j + 1])
       {
         ++j;
       }

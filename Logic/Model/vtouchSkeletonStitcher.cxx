@@ -1,5 +1,8 @@
 #include "vtouchSkeletonStitcher.h"
 
+#include "vtouchFragmentPointGrid.h"
+#include "vtouchSkeletonOverlapResolver.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -32,9 +35,23 @@ std::string describe(const char* what, const Vec3& p, int piece)
   return text.str();
 }
 
+/// The run end e's fragment-level "toward" (the source fragment whose copy won the next point).
+long towardOf(const std::vector<OverlapRun>& runs, std::size_t e)
+{
+  return e % 2 == 0 ? runs[e / 2].headToward : runs[e / 2].tailToward;
+}
+
+/// The run end e's gap to its dropped neighbour (0 for a fragment's own end).
+double gapOf(const std::vector<OverlapRun>& runs, std::size_t e)
+{
+  return e % 2 == 0 ? runs[e / 2].headGap_mm : runs[e / 2].tailGap_mm;
+}
+
 /// Pairs the cut ends: partner[e] is the end joined to e, or -1.
-std::vector<long> matchCutEnds(const std::vector<SkeletonFragment>& f,
+std::vector<long> matchCutEnds(const std::vector<OverlapRun>& runs,
+  const std::vector<SkeletonFragment>& f,
   double tolerance_mm,
+  double copyReach_mm,
   StitchReport& report)
 {
   const std::size_t ends = 2 * f.size();
@@ -47,8 +64,10 @@ std::vector<long> matchCutEnds(const std::vector<SkeletonFragment>& f,
       cuts.push_back(e);
     }
   }
-  // (pass, consistency, distance, a, b): across pieces first, named neighbours first.
-  using Candidate = std::tuple<int, int, double, std::size_t, std::size_t>;
+  // (overlap, pass, consistency, distance, a, b): the overlap's own partner first (a run cut
+  // where another fragment's copy won joins that fragment's run), across pieces next, named
+  // neighbours next, nearest first.
+  using Candidate = std::tuple<int, int, int, double, std::size_t, std::size_t>;
   std::vector<Candidate> candidates;
   for (std::size_t i = 0; i < cuts.size(); ++i)
   {
@@ -62,22 +81,33 @@ std::vector<long> matchCutEnds(const std::vector<SkeletonFragment>& f,
       const FragmentEnd& ea = endOf(f, a);
       const FragmentEnd& eb = endOf(f, b);
       const double d = (ea.position_World_mm - eb.position_World_mm).norm();
-      const double reach =
+      double reach =
         std::max(tolerance_mm, 0.5 * std::min(endPoint(f, a).radius_mm, endPoint(f, b).radius_mm));
+      const long sa = static_cast<long>(runs[a / 2].source);
+      const long sb = static_cast<long>(runs[b / 2].source);
+      const int named = (towardOf(runs, a) == sb ? 1 : 0) + (towardOf(runs, b) == sa ? 1 : 0);
+      if (named == 2)
+      {
+        // Two runs cut where each other's copy took over: the dropped points between them lie
+        // within the copy reach of each other, so the ends are at most that and the two gaps to
+        // their dropped neighbours apart (points a few voxels apart with DownsampleFactor).
+        reach = std::max(reach, copyReach_mm + gapOf(runs, a) + gapOf(runs, b));
+      }
       if (d > reach)
       {
         continue;
       }
+      const int overlap = 2 - named;
       const int pa = f[a / 2].piece, pb = f[b / 2].piece;
       const int pass = pa != pb ? 0 : 1;
       const int consistent = (ea.neighbourPiece == pb && eb.neighbourPiece == pa) ? 0 : 1;
-      candidates.emplace_back(pass, consistent, d, a, b);
+      candidates.emplace_back(overlap, pass, consistent, d, a, b);
     }
   }
   std::sort(candidates.begin(), candidates.end());
   for (const Candidate& c : candidates)
   {
-    const std::size_t a = std::get<3>(c), b = std::get<4>(c);
+    const std::size_t a = std::get<4>(c), b = std::get<5>(c);
     if (partner[a] < 0 && partner[b] < 0)
     {
       partner[a] = static_cast<long>(b);
@@ -212,21 +242,115 @@ void reportLostBranches(const QSkeleton& s, double tolerance_mm, StitchReport& r
     }
   }
 }
+
+/// Distance from `p` to the segment [a, b].
+double segmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
+{
+  const Vec3 ab = b - a;
+  const double length2 = ab.dot(ab);
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + ab * t - p).norm();
+}
+
+/// Counts the points of `sent` farther than `reach_mm` from `s` (its paths and junction links).
+void reportDroppedPoints(const QSkeleton& s,
+  const std::vector<SkeletonFragment>& sent,
+  double reach_mm,
+  StitchReport& report)
+{
+  std::vector<std::pair<Vec3, Vec3>> segments;
+  for (const SkeletonPath& path : s.paths)
+  {
+    for (std::size_t i = 0; i < path.points.size(); ++i)
+    {
+      const Vec3& a = path.points[i].position_World_mm;
+      segments.emplace_back(
+        a, i + 1 < path.points.size() ? path.points[i + 1].position_World_mm : a);
+    }
+  }
+  for (const Junction& j : s.junctions)
+  {
+    const SkeletonPath& child = s.paths[static_cast<std::size_t>(j.childPath)];
+    const SkeletonPoint& end =
+      j.childEnd == Junction::End::Head ? child.points.front() : child.points.back();
+    segments.emplace_back(end.position_World_mm,
+      s.paths[static_cast<std::size_t>(j.parentPath)]
+        .points[static_cast<std::size_t>(j.parentPoint)]
+        .position_World_mm);
+  }
+  // A segment within the reach of a point has an end within reach + half its length of it,
+  // inside the 27 cells around the point's.
+  double longest = 0.0;
+  for (const auto& [a, b] : segments)
+  {
+    longest = std::max(longest, (b - a).norm());
+  }
+  FragmentPointGrid grid(reach_mm + 0.5 * longest);
+  for (std::size_t k = 0; k < segments.size(); ++k)
+  {
+    grid.add(segments[k].first, { k, 0 });
+    grid.add(segments[k].second, { k, 1 });
+  }
+  for (const SkeletonFragment& f : sent)
+  {
+    for (const SkeletonPoint& q : f.points)
+    {
+      double best = std::numeric_limits<double>::infinity();
+      grid.visitNear(q.position_World_mm,
+        [&](const FragmentPointGrid::Item& item)
+        {
+          const auto& [a, b] = segments[item.fragment];
+          best = std::min(best, segmentDistance(q.position_World_mm, a, b));
+        });
+      if (best > reach_mm)
+      {
+        if (report.pointsDropped == 0)
+        {
+          report.notes.push_back(
+            describe("a stretch no piece kept, first point", q.position_World_mm, f.piece));
+        }
+        ++report.pointsDropped;
+      }
+    }
+  }
+}
 } // namespace
 
 QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragments,
   StitchReport& report) const
 {
   report = StitchReport{};
-  std::vector<SkeletonFragment> f;
+  std::vector<SkeletonFragment> sent;
   for (const SkeletonFragment& fragment : fragments)
   {
     if (!fragment.points.empty())
     {
-      f.push_back(fragment);
+      sent.push_back(fragment);
     }
   }
-  const std::vector<long> partner = matchCutEnds(f, joinTolerance_mm, report);
+  std::vector<OverlapRun> runs;
+  if (ownership.pieceCount() > 0)
+  {
+    SkeletonOverlapResolver resolver(ownership, frame);
+    resolver.copyReach_mm = copyReach_mm;
+    runs = resolver.resolve(sent, report.duplicatesRemoved);
+  }
+  else
+  {
+    for (std::size_t g = 0; g < sent.size(); ++g)
+    {
+      OverlapRun run;
+      run.fragment = sent[g];
+      run.source = g;
+      runs.push_back(std::move(run));
+    }
+  }
+  std::vector<SkeletonFragment> f;
+  for (const OverlapRun& run : runs)
+  {
+    f.push_back(run.fragment);
+  }
+  const std::vector<long> partner = matchCutEnds(runs, f, joinTolerance_mm, copyReach_mm, report);
   QSkeleton s;
   std::vector<ChainEnds> chainEnds;
   std::vector<char> used(f.size(), 0);
@@ -295,6 +419,14 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
         q.label = PointLabel::EndPoint;
         continue;
       }
+      // The coder writes a child's end point on its parent point; where the parent's copy was
+      // dropped for another piece's, the end moves onto the kept copy (<= the copy reach).
+      if ((q.position_World_mm - end.position_World_mm).norm() <= 1e-9 * (1.0 + d))
+      {
+        q.position_World_mm = s.paths[static_cast<std::size_t>(parentPath)]
+                                .points[static_cast<std::size_t>(parentPoint)]
+                                .position_World_mm;
+      }
       Junction j;
       j.childPath = path.id;
       j.childEnd = which;
@@ -307,6 +439,7 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
     }
   }
   reportLostBranches(s, joinTolerance_mm, report);
+  reportDroppedPoints(s, sent, coverageReach_mm, report);
   return s;
 }
 

@@ -2,6 +2,7 @@
 // (issue 19, item 2). Plain C++, no MPI: the first rank runs it on what every rank sent.
 #pragma once
 
+#include "vtouchPieceOwnership.h"
 #include "vtouchQSkeleton.h"
 #include "vtouchSkeletonFragment.h"
 
@@ -23,24 +24,44 @@ struct StitchReport
   /// branch was lost (a vessel running along a piece face, whose points each rank placed on the
   /// other's side: Docs/CLIENT-SERVER.md).
   int bifurcationsWithoutBranch = 0;
+  /// Points the pieces sent that were dropped as another piece's copy (the overlap band).
+  int duplicatesRemoved = 0;
+  /// Points some piece sent that end up farther than the coverage reach from the stitched
+  /// skeleton: a stretch no piece kept. Zero by construction; counted so that it is never silent.
+  int pointsDropped = 0;
   std::vector<std::string> notes; ///< one sentence per unmatched or unresolved end
 };
 
-/// - A cut end joins the nearest cut end within tolerance, first across pieces (preferring the
-///   pair whose neighbour pieces name each other: the same face, edge or corner), then within one
-///   piece (a path that wanders a fraction of a voxel across the face and back: the other piece
-///   placed those points on this side).
+/// - With `ownership` set (the pieces sent their owned points and an overlap band beyond their
+///   shared faces, SkeletonClipper): where two pieces' fragments overlap, one copy of each point
+///   is kept (vtouch::SkeletonOverlapResolver: the piece owning the copies' midpoint), so a vessel
+///   crossing a face is cut where it crosses and one lying along a face is kept once; the kept
+///   runs end in cut ends.
+/// - A cut end joins the nearest cut end within tolerance, preferring the run whose copy won the
+///   next point (the overlap's own partner), then ends across pieces (preferring the pair whose
+///   neighbour pieces name each other: the same face, edge or corner), then within one piece.
 /// - Fragments joined end to end become one path (a reversed fragment has its tangents negated).
 ///   A chain that closes on itself (a loop spanning pieces) is one path whose tail is attached to
 ///   its own point 0, as PolyDataToQSkeleton represents rings.
 /// - An attached end joins the nearest point of the stitched skeleton to its parent point's
-///   position (the parent may have been computed by another piece), not counting its own end.
+///   position (the parent may have been computed, or kept, by another piece: a branch that hung
+///   on a dropped copy hangs on the kept one), not counting its own end.
+/// - Every point any piece sent is checked against the result: those farther than
+///   `coverageReach_mm` from it are counted (StitchReport::pointsDropped) and named.
 /// Tolerance for a pair of ends: max(joinTolerance_mm, half the smaller radius there).
 class SkeletonStitcher
 {
 public:
   /// Smallest reach of a join, mm (the filter sets two voxels of the largest spacing). Default 2.
   double joinTolerance_mm = 2.0;
+  /// The pieces' ownership and index frame; with no pieces (the default) the fragments are
+  /// taken as they are (no overlap).
+  PieceOwnership ownership;
+  IndexFrame frame;
+  /// Two pieces' points within this reach are copies (kCopyReachVoxels voxels). Default 1.5.
+  double copyReach_mm = 1.5;
+  /// A sent point farther than this from the stitched skeleton is a dropped point. Default 1.5.
+  double coverageReach_mm = 1.5;
 
   QSkeleton stitch(const std::vector<SkeletonFragment>& fragments, StitchReport& report) const;
 };

@@ -2,7 +2,7 @@
 
 #include "vtouchCandidateRegionRunner.h"
 #include "vtouchDistributedCenterline.h"
-#include "vtouchPolyDataToQSkeleton.h"
+#include "vtouchDistributedRequest.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
@@ -16,7 +16,6 @@
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkMatrix3x3.h"
-#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -31,7 +30,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <new>
@@ -321,24 +319,13 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
   const int piece = requestedPiece(outputVector), pieces = requestedPieces(outputVector);
   if (this->Distributed(piece, pieces))
   {
-    // This rank's piece grown by the ghost margin on its shared faces (vtouch::GhostMarginRule).
     double spacing[3] = { 1.0, 1.0, 1.0 };
     if (in->Has(vtkDataObject::SPACING()))
     {
       in->Get(vtkDataObject::SPACING(), spacing);
     }
-    vtouch::VoxelExtent6 whole;
-    std::copy(extent, extent + 6, whole.begin());
-    const vtouch::VoxelExtent6 grown = vtouch::grownExtent(
-      vtouch::DistributedCenterline::pieceExtents(whole, pieces)[static_cast<std::size_t>(piece)],
-      whole,
-      this->GetGhostMarginVoxels(spacing));
-    std::copy(grown.begin(), grown.end(), extent);
-    // As one piece of that extent: a reader that splits by piece number (ParaView's XML
-    // readers split their own way) would intersect its split with the extent.
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    vtouch::DistributedRequest::requestGrownPiece(
+      in, piece, pieces, this->GetGhostMarginVoxels(spacing), extent);
   }
   else if (piece > 0)
   {
@@ -678,95 +665,37 @@ int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]
 int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** inputVector,
   vtkPolyData* output)
 {
-  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
-  vtkMultiProcessController* controller = vtouch::DistributedCenterline::controllerFor(
-    vtkMultiProcessController::GetGlobalController()->GetLocalProcessId(),
-    vtkMultiProcessController::GetGlobalController()->GetNumberOfProcesses());
-  // This piece's own run; its errors (a piece without vessels is normal) wait for the stitch.
-  vtkNew<vtkPolyData> own;
-  vtouch::QSkeleton skeleton;
-  vtouch::PieceReport report;
-  vtouch::IndexFrame frame;
-  vtouch::VoxelExtent6 whole{ 0, -1, 0, -1, 0, -1 };
-  double largestSpacing = 1.0;
-  if (input)
+  vtouch::DistributedRequest::Hooks hooks;
+  hooks.extractPiece = [this, inputVector](vtkImageData* piece, vtkPolyData* pieceOutput)
   {
     this->QuietErrors = true;
-    const auto extractStart = std::chrono::steady_clock::now();
-    this->ExtractVolume(inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), own);
-    report.extractSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - extractStart).count();
+    this->ExtractVolume(inputVector, piece, pieceOutput);
     this->QuietErrors = false;
-    std::string error;
-    if (own->GetNumberOfLines() > 0 && !vtouch::PolyDataToQSkeleton().convert(own, skeleton, error))
-    {
-      this->ExtractionMessage = "VesselCenterline: this piece's skeleton is unreadable: " + error;
-      skeleton = vtouch::QSkeleton{};
-    }
-    report.rangeLower = this->IntensityRangeUsed[0];
-    report.rangeUpper = this->IntensityRangeUsed[1];
-    frame = vtouch::DistributedCenterline::indexFrame(input);
-    largestSpacing = std::max({ frame.spacing_mm[0], frame.spacing_mm[1], frame.spacing_mm[2] });
-    input->GetExtent(report.inputExtent.data());
-    if (vtkDataArray* bytes = input->GetFieldData()->GetArray("ReaderVoxelBytesRead"))
-    {
-      report.readerBytes = bytes->GetComponent(0, 0);
-    }
-    vtkInformation* in = inputVector[0]->GetInformationObject(0);
-    in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
-  }
-  // Collective: every rank gets here once per run, whatever its piece gave.
-  vtouch::DistributedCenterline::Result result;
-  output->Initialize();
-  if (!vtouch::DistributedCenterline::gatherAndStitch(
-        controller, skeleton, frame, whole, report, 2.0 * largestSpacing, result))
+  };
+  hooks.lastRun = [this](double range[2], std::string& message)
+  {
+    range[0] = this->IntensityRangeUsed[0];
+    range[1] = this->IntensityRangeUsed[1];
+    message = this->ExtractionMessage;
+  };
+  hooks.fill = fillOutput;
+  hooks.ghostMarginVoxels = [this](const double spacing[3])
+  { return this->GetGhostMarginVoxels(spacing); };
+  hooks.automaticIntensityRange = this->AutomaticIntensityRange;
+  const vtouch::DistributedRequest::Outcome outcome =
+    vtouch::DistributedRequest::run(inputVector, output, hooks);
+  this->ExtractionMessage = outcome.message;
+  if (!outcome.firstRank)
   {
     return 1; // not the first rank: an empty piece of the output
   }
-  fillOutput(result.skeleton, output);
-  vtkFieldData* fd = output->GetFieldData();
-  // The first rank's run data (range, factor, stage times, ...), then the stitch's.
-  vtkFieldData* ownFd = own->GetFieldData();
-  for (int i = 0; i < ownFd->GetNumberOfArrays(); ++i)
+  for (const std::string& warning : outcome.warnings)
   {
-    vtkAbstractArray* a = ownFd->GetAbstractArray(i);
-    if (a && a->GetName() && !fd->GetAbstractArray(a->GetName()))
-    {
-      fd->AddArray(a);
-    }
+    vtkWarningMacro(<< warning);
   }
-  std::string message;
-  if (result.skeleton.empty())
+  if (!outcome.message.empty())
   {
-    message = this->ExtractionMessage.empty()
-                ? std::string("VesselCenterline: no piece of the volume gave a skeleton.")
-                : this->ExtractionMessage;
-  }
-  if (!result.error.empty())
-  {
-    message = "VesselCenterline: " + result.error;
-  }
-  this->ExtractionMessage = message;
-  vtouch::addRangeFieldData(fd,
-    this->IntensityRangeUsed[0],
-    this->IntensityRangeUsed[1],
-    this->AutomaticIntensityRange,
-    message);
-  const bool rangesDiffer = vtouch::DistributedCenterline::addReports(
-    fd, result, this->GetGhostMarginVoxels(frame.spacing_mm.data()), this->IntensityRangeUsed);
-  if (rangesDiffer)
-  {
-    vtkWarningMacro("VesselCenterline (distributed): the ranks estimated different intensity "
-                    "ranges on their pieces; set AutomaticIntensityRange off and the thresholds "
-                    "for one range everywhere.");
-  }
-  for (const std::string& note : result.stitch.notes)
-  {
-    vtkWarningMacro(<< "VesselCenterline (distributed): " << note);
-  }
-  if (!message.empty())
-  {
-    vtkErrorMacro(<< message);
+    vtkErrorMacro(<< outcome.message);
   }
   return 1;
 }

@@ -102,11 +102,11 @@ public:
   vtkSetMacro(VesselnessThreshold, double);
   vtkGetMacro(VesselnessThreshold, double);
 
-  /// On a parallel pvserver (MPI): 1 = each rank codes its own piece grown by the ghost margin and
-  /// rank 0 stitches the pieces (issue 19 item 2; the memory per rank falls with the ranks);
-  /// 0 (default) = the first rank codes the whole volume (right on every network, no memory
-  /// scaling). Off by default until a vessel lying along a piece face is kept (Docs/CLIENT-SERVER.md,
-  /// "Distributed extraction": such a vessel can be dropped by both ranks). Not used built in.
+  /// On a parallel pvserver (MPI): 1 (default) = each rank codes its own piece grown by the ghost
+  /// margin, sends its owned points and an overlap band, and rank 0 stitches the pieces (issue 19
+  /// item 2; the memory per rank falls with the ranks; a vessel lying along a piece face is kept
+  /// once); 0 = the first rank codes the whole volume (the single run's result exactly, no memory
+  /// scaling). Not used built in (Docs/CLIENT-SERVER.md, "Distributed extraction").
   vtkSetMacro(DistributedExtraction, int);
   vtkGetMacro(DistributedExtraction, int);
   vtkBooleanMacro(DistributedExtraction, int);
@@ -196,7 +196,7 @@ private:
   int VesselnessNumberOfScales = 4;
   double VesselnessThreshold = 0.05;
   double LargestVesselRadius = 0.0;
-  int DistributedExtraction = 0;
+  int DistributedExtraction = 1;
   bool QuietErrors = false;
   bool WarnedUndistributed = false;
   std::string LastRunKey;

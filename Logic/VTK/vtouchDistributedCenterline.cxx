@@ -2,6 +2,7 @@
 
 #include "vtouchSkeletonClipper.h"
 #include "vtouchSkeletonFragmentCodec.h"
+#include "vtouchSkeletonOverlapResolver.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkExtentTranslator.h"
@@ -111,7 +112,9 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   const int ranks = controller->GetNumberOfProcesses();
   const int rank = controller->GetLocalProcessId();
   const PieceOwnership ownership(pieceExtents(whole, ranks), whole);
-  const std::vector<SkeletonFragment> fragments = SkeletonClipper(ownership, frame, rank).clip(own);
+  // The owned points and the overlap band beyond the shared faces (kOverlapBandVoxels).
+  const std::vector<SkeletonFragment> fragments =
+    SkeletonClipper(ownership, frame, rank, kOverlapBandVoxels).clip(own);
   const std::vector<double> sent = SkeletonFragmentCodec::encode(fragments);
   report.fragments = static_cast<double>(fragments.size());
   report.peakResident_kiB = peakResidentKiB();
@@ -154,6 +157,11 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   }
   SkeletonStitcher stitcher;
   stitcher.joinTolerance_mm = joinTolerance_mm;
+  stitcher.ownership = ownership;
+  stitcher.frame = frame;
+  const double voxel_mm = *std::max_element(frame.spacing_mm.begin(), frame.spacing_mm.end());
+  stitcher.copyReach_mm = kCopyReachVoxels * voxel_mm;
+  stitcher.coverageReach_mm = kCopyReachVoxels * voxel_mm;
   result.skeleton = stitcher.stitch(all, result.stitch);
   result.stitchSeconds = since(stitchStart);
   return true;
@@ -214,6 +222,8 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
   addIntValue(fd, "StitchAttachmentsUnresolved", result.stitch.attachmentsUnresolved);
   addIntValue(fd, "StitchLoopsClosed", result.stitch.loopsClosed);
   addIntValue(fd, "StitchBifurcationsWithoutBranch", result.stitch.bifurcationsWithoutBranch);
+  addIntValue(fd, "StitchDuplicatesRemoved", result.stitch.duplicatesRemoved);
+  addIntValue(fd, "StitchPointsDropped", result.stitch.pointsDropped);
   vtkNew<vtkIntArray> extents;
   extents->SetName("PieceInputExtents");
   extents->SetNumberOfComponents(6);
@@ -249,8 +259,9 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
   fd->AddArray(peak);
   fd->AddArray(fragments);
   fd->AddArray(extractSeconds);
-  for (const auto& [name, seconds] : { std::make_pair("DistributedGatherSeconds", result.gatherSeconds),
-         std::make_pair("DistributedStitchSeconds", result.stitchSeconds) })
+  for (const auto& [name, seconds] :
+    { std::make_pair("DistributedGatherSeconds", result.gatherSeconds),
+      std::make_pair("DistributedStitchSeconds", result.stitchSeconds) })
   {
     vtkNew<vtkDoubleArray> a;
     a->SetName(name);

@@ -59,8 +59,9 @@ public:
     double stitchSeconds = 0.0;      ///< decode and stitch on the first rank, s
   };
   /// Collective (every rank calls it once per run): clips `own` (this piece's skeleton, coded on
-  /// its grown extent) to the piece's owned extent, gathers the fragments and reports on the
-  /// first rank and stitches them there. Returns true on the first rank.
+  /// its grown extent) to the piece's owned extent and its overlap band (kOverlapBandVoxels),
+  /// gathers the fragments and reports on the first rank and stitches them there (one copy of
+  /// what two pieces both sent kept, kCopyReachVoxels). Returns true on the first rank.
   static bool gatherAndStitch(vtkMultiProcessController* controller,
     const QSkeleton& own,
     const IndexFrame& frame,
@@ -69,9 +70,11 @@ public:
     double joinTolerance_mm,
     Result& result);
   /// The stitch's and the ranks' reports as field data of the stitched output (the arrays
-  /// DistributedPieces, GhostMarginVoxels, Stitch*, Piece*, DistributedGatherSeconds,
-  /// DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank that found
-  /// vessels used another intensity range than `rangeUsed` (also PieceIntensityRangesDiffer).
+  /// DistributedPieces, GhostMarginVoxels, Stitch* (StitchDuplicatesRemoved, StitchPointsDropped
+  /// among them), Piece*, DistributedGatherSeconds,
+  /// DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank
+  /// that found vessels used another intensity range than `rangeUsed` (also
+  /// PieceIntensityRangesDiffer).
   static bool addReports(vtkFieldData* fd,
     const Result& result,
     int ghostMarginVoxels,

@@ -1,8 +1,7 @@
 // The stitcher joins what the pieces of a distributed volume kept (issue 19, item 2): skeletons
 // in index = world coordinates (1 mm voxels), clipped per piece by SkeletonClipper, stitched,
 // then compared with the skeleton before the split: same topology, the same points.
-#include "vtouchSkeletonClipper.h"
-#include "vtouchSkeletonStitcher.h"
+#include "vtouchStitchTestHelpers.h"
 
 #include <gtest/gtest.h>
 
@@ -12,135 +11,7 @@
 namespace
 {
 using namespace vtouch;
-
-SkeletonPoint point(double x, double y, double z, double radius_mm = 1.0)
-{
-  SkeletonPoint p;
-  p.position_World_mm = { x, y, z };
-  p.radius_mm = radius_mm;
-  return p;
-}
-
-SkeletonPath path(int id, std::vector<SkeletonPoint> points)
-{
-  SkeletonPath p;
-  p.id = id;
-  p.points = std::move(points);
-  p.points.front().label = PointLabel::EndPoint;
-  p.points.back().label = PointLabel::EndPoint;
-  return p;
-}
-
-/// Attaches `child`'s `end` to `parent`'s point.
-void attach(QSkeleton& s, int child, Junction::End end, int parent, int parentPoint)
-{
-  Junction j;
-  j.childPath = child;
-  j.childEnd = end;
-  j.parentPath = parent;
-  j.parentPoint = parentPoint;
-  SkeletonPath& c = s.paths[static_cast<std::size_t>(child)];
-  (end == Junction::End::Head ? c.head : c.tail).junction = static_cast<int>(s.junctions.size());
-  SkeletonPoint& q = end == Junction::End::Head ? c.points.front() : c.points.back();
-  q.label = PointLabel::Bifurcation;
-  q.position_World_mm = s.paths[static_cast<std::size_t>(parent)]
-                          .points[static_cast<std::size_t>(parentPoint)]
-                          .position_World_mm;
-  s.junctions.push_back(j);
-}
-
-/// Clips `perPiece[r]` (piece r's own skeleton) with piece r's ownership and stitches them all.
-QSkeleton clipAndStitch(const std::vector<QSkeleton>& perPiece,
-  const PieceOwnership& ownership,
-  StitchReport& report)
-{
-  std::vector<SkeletonFragment> all;
-  for (std::size_t r = 0; r < perPiece.size(); ++r)
-  {
-    const SkeletonClipper clipper(ownership, IndexFrame{}, static_cast<int>(r));
-    for (SkeletonFragment& f : clipper.clip(perPiece[r]))
-    {
-      all.push_back(std::move(f));
-    }
-  }
-  SkeletonStitcher stitcher;
-  stitcher.joinTolerance_mm = 1.5;
-  return stitcher.stitch(all, report);
-}
-
-/// Independent cycles of the network: junctions - paths + connected parts (each path is a
-/// chain, each junction one more edge between two paths' points).
-int cycleRank(const QSkeleton& s)
-{
-  std::vector<int> parent(s.paths.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int a)
-  {
-    while (parent[static_cast<std::size_t>(a)] != a)
-    {
-      a = parent[static_cast<std::size_t>(a)];
-    }
-    return a;
-  };
-  for (const Junction& j : s.junctions)
-  {
-    parent[static_cast<std::size_t>(find(j.childPath))] = find(j.parentPath);
-  }
-  int parts = 0;
-  for (std::size_t i = 0; i < s.paths.size(); ++i)
-  {
-    parts += find(static_cast<int>(i)) == static_cast<int>(i) ? 1 : 0;
-  }
-  return static_cast<int>(s.junctions.size()) - static_cast<int>(s.paths.size()) + parts;
-}
-
-/// Vessel ends: path ends neither attached nor the parent point of a junction (a ring's point 0).
-int freeEnds(const QSkeleton& s)
-{
-  const auto isParent = [&s](int path, int point)
-  {
-    for (const Junction& j : s.junctions)
-    {
-      if (j.parentPath == path && j.parentPoint == point)
-      {
-        return true;
-      }
-    }
-    return false;
-  };
-  int n = 0;
-  for (const SkeletonPath& p : s.paths)
-  {
-    const int last = static_cast<int>(p.points.size()) - 1;
-    n += (p.head.junction < 0 && !isParent(p.id, 0)) ? 1 : 0;
-    n += (p.tail.junction < 0 && !isParent(p.id, last)) ? 1 : 0;
-  }
-  return n;
-}
-
-/// Every point of `a` has a point of `b` within `tolerance_mm`.
-bool allPointsNear(const QSkeleton& a, const QSkeleton& b, double tolerance_mm)
-{
-  for (const SkeletonPath& pa : a.paths)
-  {
-    for (const SkeletonPoint& p : pa.points)
-    {
-      double best = 1e300;
-      for (const SkeletonPath& pb : b.paths)
-      {
-        for (const SkeletonPoint& q : pb.points)
-        {
-          best = std::min(best, (p.position_World_mm - q.position_World_mm).norm());
-        }
-      }
-      if (best > tolerance_mm)
-      {
-        return false;
-      }
-    }
-  }
-  return true;
-}
+using namespace vtouch_test;
 
 const VoxelExtent6 kWhole{ 0, 20, 0, 20, 0, 10 };
 /// Two pieces split at x = 10 (the executive's split: the layer x = 10 is shared).

@@ -21,6 +21,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [HERE, os.path.dirname(HERE)]
 from vtouch_pvserver import (ParallelServer, rank_processes, status_mib,  # noqa: E402
                              write_float_nrrd)
+from vtouch_skeleton_graph import graph  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
@@ -47,18 +48,22 @@ def measure(path, ranks, radius_mm):
         def values(name):
             a = fd.GetArray(name)
             return None if a is None else [a.GetTuple(i) for i in range(a.GetNumberOfTuples())]
-        print("ranks %d: %d paths, %d points; VmHWM per rank (MiB): %s"
-              % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(),
-                 ", ".join("%.0f" % h for h in hwm)))
+        g = graph(data, 1.0)
+        print("ranks %d: %d paths, %d points, %d ends, %d bifurcations, %d loops; VmHWM per rank "
+              "(MiB): %s" % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(), g["ends"],
+                             len(g["bifurcations"]), g["cycles"],
+                             ", ".join("%.0f" % h for h in hwm)))
         if values("PieceInputExtents"):
             for r, (e, b, p) in enumerate(zip(values("PieceInputExtents"),
                                              values("PieceReaderVoxelBytesRead"),
                                              values("PiecePeakResidentKiB"))):
                 print("  rank %d read extent %s: %.0f MiB of voxels; its run's peak %.0f MiB"
                       % (r, [int(v) for v in e], b[0] / 2 ** 20, p[0] / 1024.0))
-            print("  ghost margin %d voxels; cut ends joined %d, unmatched %d"
+            print("  ghost margin %d voxels; cut ends joined %d, unmatched %d; duplicates removed "
+                  "%s, points dropped %s, bifurcations without branch %s"
                   % (values("GhostMarginVoxels")[0][0], values("StitchCutEndsJoined")[0][0],
-                     values("StitchCutEndsUnmatched")[0][0]))
+                     values("StitchCutEndsUnmatched")[0][0], values("StitchDuplicatesRemoved"),
+                     values("StitchPointsDropped"), values("StitchBifurcationsWithoutBranch")))
         simple.Disconnect()
     finally:
         server.stop()

@@ -133,6 +133,9 @@ def distributed(references):
               "%s: every cut end found its partner" % name)
         check(field(data, "StitchBifurcationsWithoutBranch")[0][0] == 0,
               "%s: every bifurcation kept its branch" % name)
+        check(field(data, "StitchPointsDropped") == [(0.0,)],
+              "%s: every point a rank sent is on the stitched skeleton (StitchPointsDropped %s)"
+              % (name, field(data, "StitchPointsDropped")))
         # Time per stage (issue 19 item 4): each rank's own extraction, the gather and the
         # stitch, and the first rank's coder stages.
         extract = field(data, "PieceExtractSeconds")

@@ -1,0 +1,340 @@
+#include "vtouchSkeletonOverlapResolver.h"
+
+#include "vtouchFragmentPointGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace vtouch
+{
+
+SkeletonOverlapResolver::SkeletonOverlapResolver(const PieceOwnership& ownership,
+  const IndexFrame& frame)
+  : ownership_(ownership)
+  , frame_(frame)
+{
+}
+
+bool SkeletonOverlapResolver::wins(const Vec3& p, int r, const Vec3& q, int s) const
+{
+  const int o = ownership_.owner(frame_.toIndex((p + q) * 0.5));
+  if (o == r || o == s)
+  {
+    return o == r;
+  }
+  return r < s;
+}
+
+namespace
+{
+/// Project rule: the half width, in points, of the window whose majority decides which copy of
+/// a point is kept (see resolve()).
+constexpr std::size_t kDecisionHalfWindow = 3;
+
+/// Another piece's nearest copy of a point.
+struct Copy
+{
+  long fragment = -1; ///< -1: no copy
+  int piece = -1;
+  double at = 0.0; ///< where on the copy's fragment, a fractional point index
+  Vec3 position;
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+/// The unit direction of a fragment at point i (central difference), or zero for one point.
+Vec3 directionAt(const SkeletonFragment& f, std::size_t i)
+{
+  const std::size_t n = f.points.size();
+  if (n < 2)
+  {
+    return {};
+  }
+  const std::size_t a = i == 0 ? 0 : i - 1;
+  const std::size_t b = i + 1 >= n ? n - 1 : i + 1;
+  const Vec3 d = f.points[b].position_World_mm - f.points[a].position_World_mm;
+  const double length = d.norm();
+  return length > 0.0 ? d * (1.0 / length) : Vec3{};
+}
+
+/// The nearest point of each other piece's fragments to point i of fragment g, on their
+/// segments (the coder's points may lie several voxels apart with DownsampleFactor: the lateral
+/// offset is what tells copies apart), within `reach_mm` and running alike; nearest first.
+std::vector<Copy> nearestCopies(const std::vector<SkeletonFragment>& fragments,
+  const FragmentPointGrid& grid,
+  std::size_t g,
+  std::size_t i,
+  double reach_mm,
+  double minimumCosine)
+{
+  const SkeletonFragment& f = fragments[g];
+  const Vec3& p = f.points[i].position_World_mm;
+  const Vec3 dp = directionAt(f, i);
+  std::vector<Copy> best;
+  grid.visitNear(p,
+    [&](const FragmentPointGrid::Item& item)
+    {
+      const SkeletonFragment& other = fragments[item.fragment];
+      if (other.piece == f.piece)
+      {
+        return;
+      }
+      const std::size_t m = other.points.size();
+      for (std::size_t a = item.point == 0 ? 0 : item.point - 1; a <= item.point; ++a)
+      {
+        const std::size_t b = std::min(a + 1, m - 1);
+        const Vec3& qa = other.points[a].position_World_mm;
+        const Vec3 ab = other.points[b].position_World_mm - qa;
+        const double length2 = ab.dot(ab);
+        const double t = length2 > 0.0 ? std::clamp((p - qa).dot(ab) / length2, 0.0, 1.0) : 0.0;
+        const Vec3 q = qa + ab * t;
+        const double d = (q - p).norm();
+        if (d > reach_mm)
+        {
+          continue;
+        }
+        const Vec3 dq = length2 > 0.0 ? ab * (1.0 / std::sqrt(length2)) : Vec3{};
+        if (dp.norm() > 0.0 && dq.norm() > 0.0 && std::abs(dp.dot(dq)) < minimumCosine)
+        {
+          continue; // another vessel passing near (a branch at its junction)
+        }
+        Copy c;
+        c.fragment = static_cast<long>(item.fragment);
+        c.piece = other.piece;
+        c.at = static_cast<double>(a) + t * static_cast<double>(b - a);
+        c.position = q;
+        c.distance = d;
+        const auto same = std::find_if(
+          best.begin(), best.end(), [&](const Copy& x) { return x.piece == other.piece; });
+        if (same == best.end())
+        {
+          best.push_back(c);
+        }
+        else if (d < same->distance)
+        {
+          *same = c;
+        }
+      }
+    });
+  std::sort(best.begin(),
+    best.end(),
+    [](const Copy& a, const Copy& b)
+    { return std::tie(a.distance, a.piece) < std::tie(b.distance, b.piece); });
+  return best;
+}
+
+/// A run [first, last] of fragment `source` with its ends.
+OverlapRun makeRun(const std::vector<SkeletonFragment>& fragments,
+  std::size_t source,
+  std::size_t first,
+  std::size_t last,
+  const std::vector<long>& toward)
+{
+  const SkeletonFragment& f = fragments[source];
+  OverlapRun run;
+  run.source = source;
+  run.fragment.piece = f.piece;
+  run.fragment.points.assign(f.points.begin() + static_cast<std::ptrdiff_t>(first),
+    f.points.begin() + static_cast<std::ptrdiff_t>(last + 1));
+  const auto cutAt = [&](std::size_t kept, std::size_t dropped, long& towardOut, double& gap)
+  {
+    gap = (f.points[dropped].position_World_mm - f.points[kept].position_World_mm).norm();
+    FragmentEnd end;
+    end.kind = FragmentEnd::Kind::Cut;
+    end.position_World_mm = f.points[kept].position_World_mm;
+    towardOut = toward[dropped];
+    end.neighbourPiece = towardOut >= 0 ? fragments[static_cast<std::size_t>(towardOut)].piece : -1;
+    return end;
+  };
+  run.fragment.head = first == 0 ? f.head : cutAt(first, first - 1, run.headToward, run.headGap_mm);
+  run.fragment.tail =
+    last + 1 == f.points.size() ? f.tail : cutAt(last, last + 1, run.tailToward, run.tailGap_mm);
+  return run;
+}
+
+/// The majority of `raw` over the window of each point among the points where `counts` holds;
+/// a tie keeps the point's own.
+std::vector<signed char> majority(const std::vector<signed char>& raw,
+  const std::vector<char>& counts)
+{
+  std::vector<signed char> out = raw;
+  const std::size_t n = raw.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!counts[i])
+    {
+      continue;
+    }
+    int kept = 0, total = 0;
+    for (std::size_t j = i; counts[j] && i - j <= kDecisionHalfWindow; --j)
+    {
+      kept += raw[j];
+      ++total;
+      if (j == 0)
+      {
+        break;
+      }
+    }
+    for (std::size_t j = i + 1; j < n && counts[j] && j - i <= kDecisionHalfWindow; ++j)
+    {
+      kept += raw[j];
+      ++total;
+    }
+    out[i] = 2 * kept > total ? 1 : (2 * kept < total ? 0 : raw[i]);
+  }
+  return out;
+}
+} // namespace
+
+std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
+  const std::vector<SkeletonFragment>& fragments,
+  int& duplicatesRemoved) const
+{
+  duplicatesRemoved = 0;
+  double longestSegment = 0.0;
+  for (const SkeletonFragment& f : fragments)
+  {
+    for (std::size_t i = 0; i + 1 < f.points.size(); ++i)
+    {
+      longestSegment = std::max(
+        longestSegment, (f.points[i + 1].position_World_mm - f.points[i].position_World_mm).norm());
+    }
+  }
+  FragmentPointGrid grid(copyReach_mm + 0.5 * longestSegment);
+  for (std::size_t g = 0; g < fragments.size(); ++g)
+  {
+    for (std::size_t i = 0; i < fragments[g].points.size(); ++i)
+    {
+      grid.add(fragments[g].points[i].position_World_mm, { g, i });
+    }
+  }
+  const std::size_t F = fragments.size();
+  std::vector<std::vector<std::vector<Copy>>> copies(F);
+  for (std::size_t g = 0; g < F; ++g)
+  {
+    for (std::size_t i = 0; i < fragments[g].points.size(); ++i)
+    {
+      copies[g].push_back(nearestCopies(fragments, grid, g, i, copyReach_mm, minimumCopyCosine));
+    }
+  }
+  // keep[g][i]: 1 kept, 0 dropped for a copy (toward[g][i] its fragment). Where one other piece
+  // has a copy (a face), the lower piece's side decides (the midpoint rule, smoothed along its
+  // fragment) and the other side takes the complement at its copy's place on the deciding
+  // fragment, so that the two decisions meet without a gap. Where several pieces have copies
+  // (an edge or a corner) the copies' centroid decides (winsAll).
+  std::vector<std::vector<signed char>> keep(F);
+  std::vector<std::vector<long>> toward(F);
+  // With several pieces' copies (an edge or a corner) the pairwise rule can drop them all (each
+  // loses to one other): the copies' centroid decides instead (the same point from every copy,
+  // up to where each one's nearest copies lie): its owner keeps its copy; when its owner has
+  // none, the lowest piece does.
+  const auto winsAll = [&](std::size_t g, std::size_t i, long& winner)
+  {
+    winner = -1;
+    const std::vector<Copy>& c = copies[g][i];
+    const int own = fragments[g].piece;
+    if (c.size() == 1)
+    {
+      const bool kept =
+        wins(fragments[g].points[i].position_World_mm, own, c[0].position, c[0].piece);
+      winner = kept ? -1 : c[0].fragment;
+      return kept;
+    }
+    Vec3 centroid = fragments[g].points[i].position_World_mm;
+    const Copy* lowest = nullptr;
+    for (const Copy& x : c)
+    {
+      centroid = centroid + x.position;
+      lowest = !lowest || x.piece < lowest->piece ? &x : lowest;
+    }
+    centroid = centroid * (1.0 / static_cast<double>(c.size() + 1));
+    const int o = ownership_.owner(frame_.toIndex(centroid));
+    if (o == own)
+    {
+      return true;
+    }
+    for (const Copy& x : c)
+    {
+      if (x.piece == o)
+      {
+        winner = x.fragment;
+        return false;
+      }
+    }
+    if (own < lowest->piece)
+    {
+      return true;
+    }
+    winner = lowest->fragment;
+    return false;
+  };
+  for (std::size_t g = 0; g < F; ++g)
+  {
+    const SkeletonFragment& f = fragments[g];
+    const std::size_t n = f.points.size();
+    std::vector<signed char> raw(n, 1);
+    std::vector<char> deciding(n, 0);
+    toward[g].assign(n, -1);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::vector<Copy>& c = copies[g][i];
+      deciding[i] = c.size() == 1 && c[0].piece > f.piece ? 1 : 0;
+      long winner = -1;
+      raw[i] = c.empty() || winsAll(g, i, winner) ? 1 : 0;
+    }
+    keep[g] = majority(raw, deciding);
+  }
+  for (std::size_t g = 0; g < F; ++g)
+  {
+    const SkeletonFragment& f = fragments[g];
+    for (std::size_t i = 0; i < f.points.size(); ++i)
+    {
+      const std::vector<Copy>& c = copies[g][i];
+      if (c.size() == 1 && c[0].piece < f.piece)
+      {
+        const auto h = static_cast<std::size_t>(c[0].fragment);
+        const auto j = std::min(static_cast<std::size_t>(std::lround(c[0].at)), keep[h].size() - 1);
+        const std::vector<Copy>& back = copies[h][j];
+        if (back.size() == 1 && back[0].fragment == static_cast<long>(g))
+        {
+          keep[g][i] = keep[h][j] ? 0 : 1;
+        }
+      }
+      if (!keep[g][i])
+      {
+        long winner = -1;
+        winsAll(g, i, winner);
+        toward[g][i] = winner >= 0 ? winner : c.front().fragment;
+      }
+    }
+  }
+  std::vector<OverlapRun> runs;
+  for (std::size_t g = 0; g < F; ++g)
+  {
+    const std::size_t n = keep[g].size();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      duplicatesRemoved += keep[g][i] ? 0 : 1;
+    }
+    std::size_t i = 0;
+    while (i < n)
+    {
+      if (!keep[g][i])
+      {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j + 1 < n && keep[g][j + 1])
+      {
+        ++j;
+      }
+      runs.push_back(makeRun(fragments, g, i, j, toward[g]));
+      i = j + 1;
+    }
+  }
+  return runs;
+}
+
+} // namespace vtouch

@@ -1,0 +1,60 @@
+// The centerline filter's distributed request and dispatch (issue 19, item 2): which extent a
+// rank asks for, and one rank's run of the distributed extraction (its piece coded, clipped,
+// gathered and stitched on the first rank, the stitched output assembled there). Moved out of
+// vtkVesselTouchCenterlineFilter unchanged in behaviour; not a wrapped class.
+#pragma once
+
+#include "vtouchQSkeleton.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkInformation;
+class vtkInformationVector;
+class vtkPolyData;
+
+namespace vtouch
+{
+
+class DistributedRequest
+{
+public:
+  /// Sets `in`'s request to piece `piece` of `pieces` (the executive's split) grown by
+  /// `ghostMarginVoxels` on its shared faces, as one piece of that extent (a reader that splits by
+  /// piece number, as ParaView's XML readers do their own way, would intersect its split with the
+  /// extent). `extent`: the whole extent in, the grown extent out.
+  static void requestGrownPiece(vtkInformation* in,
+    int piece,
+    int pieces,
+    int ghostMarginVoxels,
+    int extent[6]);
+
+  /// What the filter gives the distributed run: its own single-process run and its settings.
+  struct Hooks
+  {
+    /// Codes `piece` (an image indexed from 0) into `output`, errors deferred (not reported).
+    std::function<void(vtkImageData* piece, vtkPolyData* output)> extractPiece;
+    /// The intensity range the last extractPiece used, and its message ("" when it worked).
+    std::function<void(double range[2], std::string& message)> lastRun;
+    /// Writes a skeleton as the filter's output polydata (points, lines, arrays).
+    std::function<void(const QSkeleton& skeleton, vtkPolyData* output)> fill;
+    /// The ghost margin for a spacing (GhostMarginRule with the filter's parameters), voxels.
+    std::function<int(const double spacing[3])> ghostMarginVoxels;
+    bool automaticIntensityRange = true;
+  };
+  /// What the run says; the filter reports it with its own macros.
+  struct Outcome
+  {
+    bool firstRank = false;
+    std::string message;               ///< the error of the stitched result ("" when none)
+    std::vector<std::string> warnings; ///< one sentence each
+    double rangeUsed[2] = { 0.0, 0.0 };
+  };
+  /// Collective: every rank calls it once per run. `output` is the rank's output (empty on every
+  /// rank but the first).
+  static Outcome run(vtkInformationVector** inputVector, vtkPolyData* output, const Hooks& hooks);
+};
+
+} // namespace vtouch
