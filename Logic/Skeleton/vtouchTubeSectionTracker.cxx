@@ -211,8 +211,10 @@ void retracePath(QSkeleton& skeleton,
     return sec[static_cast<std::size_t>(i)].clean || (i == 0 && path.head.junction >= 0) ||
            (i == n - 1 && path.tail.junction >= 0);
   };
-  // A lone clean point amid clutter: the judged points on both sides of it are not clean and one
-  // of them is as wide as clutter (s >= clutterMinimumWidth: not a thin vessel's noisy wall). It
+  // A lone clean point amid clutter: the judged points on both sides of it are not clean, in the
+  // range (s > 0: not a thin vessel's section whose centre fell on a noise hole, which says the
+  // point is on that vessel) and one of them is as wide as clutter (s >= clutterMinimumWidth:
+  // not a thin vessel's noisy wall). It
   // is the coder's centre pulled into a contact whose section happens to be round and narrow
   // there, off the tube: a track from the tube before it cannot meet it, so it does not end a
   // stretch that such a track enters (below), as a lone round section is no vessel to follow.
@@ -224,8 +226,8 @@ void retracePath(QSkeleton& skeleton,
     }
     const PointSection& before = sec[static_cast<std::size_t>(i - 1)];
     const PointSection& after = sec[static_cast<std::size_t>(i + 1)];
-    return !before.zone && !after.zone && !before.clean && !after.clean &&
-           std::max(before.s, after.s) >= s.clutterMinimumWidth_voxels;
+    return !before.zone && !after.zone && !before.clean && !after.clean && before.s > 0.0 &&
+           after.s > 0.0 && std::max(before.s, after.s) >= s.clutterMinimumWidth_voxels;
   };
   // The point of this path where another vessel joins it (both have clean runs: the coder's
   // junction between two vessels) that the tube's track from `from` (toward `sign`) came within
