@@ -15,6 +15,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkLogger.h"
 #include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -334,14 +335,15 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
   }
   else
   {
-    // Only when distribution was asked for: by default the first rank codes the whole volume
-    // in every mode, and saying so on every extraction would only open the Output Messages.
+    // A note, not a warning: the result is right (the single run's), only the memory does not
+    // scale, and a warning would open ParaView's Output Messages over the view on every one-click
+    // extraction on a server (DistributedExtraction is on by default). In the server's log.
     if (pieces > 1 && this->DistributedExtraction && !this->WarnedUndistributed)
     {
       this->WarnedUndistributed = true; // once per filter: every update asks again
-      vtkWarningMacro("VesselCenterline: the raw seeded mode (AutomaticIntensityRange with "
-                      "UseSeedPoint) is not distributed yet; the first rank codes the whole "
-                      "volume.");
+      vtkLogF(INFO,
+        "VesselCenterline: the raw seeded mode (AutomaticIntensityRange with UseSeedPoint) is "
+        "not distributed yet; the first rank codes the whole volume.");
     }
     // The whole volume as one piece: readers that split by piece number read it all.
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
