@@ -14,11 +14,6 @@ namespace
 using namespace vtouch;
 using namespace vtouch_test;
 
-const VoxelExtent6 kWhole{ 0, 20, 0, 20, 0, 10 };
-PieceOwnership twoPieces()
-{
-  return PieceOwnership({ { 0, 10, 0, 20, 0, 10 }, { 10, 20, 0, 20, 0, 10 } }, kWhole);
-}
 
 /// A vessel along y (y = 1 .. 19, one point a voxel) at x = 10 + offset + wobble sin(k y + phase).
 std::vector<SkeletonPoint> alongFace(double offset, double wobble, double phase)

@@ -13,12 +13,6 @@ namespace
 using namespace vtouch;
 using namespace vtouch_test;
 
-const VoxelExtent6 kWhole{ 0, 20, 0, 20, 0, 10 };
-/// Two pieces split at x = 10 (the executive's split: the layer x = 10 is shared).
-PieceOwnership twoPieces()
-{
-  return PieceOwnership({ { 0, 10, 0, 20, 0, 10 }, { 10, 20, 0, 20, 0, 10 } }, kWhole);
-}
 
 TEST(SkeletonStitcher, APathCutByOneFaceComesBackWhole)
 {

@@ -3,6 +3,7 @@
 // topology counts the tests compare.
 #pragma once
 
+#include "vtouchPieceOwnership.h"
 #include "vtouchSkeletonClipper.h"
 #include "vtouchSkeletonOverlapResolver.h"
 #include "vtouchSkeletonStitcher.h"
@@ -13,6 +14,14 @@
 namespace vtouch_test
 {
 using namespace vtouch;
+
+/// The tests' whole extent: 21 x 21 x 11 voxels.
+inline const VoxelExtent6 kWhole{ 0, 20, 0, 20, 0, 10 };
+/// Two pieces split at x = 10 (the executive's split: the layer x = 10 is shared).
+inline PieceOwnership twoPieces()
+{
+  return PieceOwnership({ { 0, 10, 0, 20, 0, 10 }, { 10, 20, 0, 20, 0, 10 } }, kWhole);
+}
 
 inline SkeletonPoint point(double x, double y, double z, double radius_mm = 1.0)
 {
