@@ -337,7 +337,7 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
   {
     // A note, not a warning: the result is right (the single run's), only the memory does not
     // scale, and a warning would open ParaView's Output Messages over the view on every one-click
-    // extraction on a server (DistributedExtraction is on by default). In the server's log.
+    // extraction on a server with DistributedExtraction on. In the server's log.
     if (pieces > 1 && this->DistributedExtraction && !this->WarnedUndistributed)
     {
       this->WarnedUndistributed = true; // once per filter: every update asks again

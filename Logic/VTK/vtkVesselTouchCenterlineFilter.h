@@ -196,7 +196,7 @@ private:
   int VesselnessNumberOfScales = 4;
   double VesselnessThreshold = 0.05;
   double LargestVesselRadius = 0.0;
-  int DistributedExtraction = 1;
+  int DistributedExtraction = 0;
   bool QuietErrors = false;
   bool WarnedUndistributed = false;
   std::string LastRunKey;
