@@ -86,7 +86,13 @@ std::vector<long> matchCutEnds(const std::vector<OverlapRun>& runs,
       const long sa = static_cast<long>(runs[a / 2].source);
       const long sb = static_cast<long>(runs[b / 2].source);
       const int named = (towardOf(runs, a) == sb ? 1 : 0) + (towardOf(runs, b) == sa ? 1 : 0);
-      if (named == 2)
+      // At an edge or corner two runs may both be cut where one third fragment's copy took
+      // over, a copy that itself lost there to theirs (it kept nothing between them): they are
+      // each other's neighbours across it (the property test's corner of 8 pieces).
+      const long third = towardOf(runs, a);
+      const bool acrossThird =
+        third >= 0 && third == towardOf(runs, b) && third != sa && third != sb;
+      if (named == 2 || acrossThird)
       {
         // Two runs cut where each other's copy took over: the dropped points between them lie
         // within the copy reach of each other, so the ends are at most that and the two gaps to

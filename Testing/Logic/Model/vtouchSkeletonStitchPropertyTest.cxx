@@ -101,7 +101,8 @@ TEST(SkeletonStitchProperty, RandomVesselsAcrossFacesEdgesAndCornersKeepTheirTop
 {
   std::mt19937 rng(19);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int topologyDiffers = 0; // where it is not asserted: printed, for Docs/CLIENT-SERVER.md
+  int topologyDiffers = 0; // branched: not asserted, printed for Docs/CLIENT-SERVER.md
+  int cornerStrays = 0;    // 8 pieces: stray points dropped, printed
   for (int axes = 1; axes <= 3; ++axes)
   {
     const PieceOwnership ownership = piecesSplitAlong(axes);
@@ -162,13 +163,12 @@ TEST(SkeletonStitchProperty, RandomVesselsAcrossFacesEdgesAndCornersKeepTheirTop
       what << pieces << " pieces, trial " << trial << (branched ? " (branched)" : "");
       EXPECT_EQ(s.validate(), "") << what.str();
       expectValidPaths(s, what.str());
-      // The topology is asserted where the stitch is known to keep it: an unbranched vessel
-      // across the faces and edges of 2 and 4 pieces. Not yet at the corner of 8 pieces (1 of
-      // 30 trials with this seed leaves two cut ends 2 voxels apart unmatched, also on the code
-      // before settleOnePointRuns) nor for a branch whose junction each piece places up to 4
-      // points apart at 25-60 degrees (36 of 90 trials: the pieces' first branch points are then
-      // up to 3.5 voxels apart, not copies, and both are kept): Docs/CLIENT-SERVER.md.
-      if (branched || pieces == 8)
+      // The topology is asserted for an unbranched vessel across the faces, edges and corners
+      // of 2, 4 and 8 pieces. Not yet for a branch whose junction each piece places up to 4
+      // points apart at 25-60 degrees (35 of 90 trials with this seed: the pieces' first branch
+      // points are then up to 3.5 voxels apart, not copies, and both are kept): counted and
+      // printed, Docs/CLIENT-SERVER.md.
+      if (branched)
       {
         const bool same = s.paths.size() == (branched ? 2u : 1u) &&
                           freeEnds(s) == (branched ? 3 : 2) && cycleRank(s) == 0;
@@ -178,12 +178,20 @@ TEST(SkeletonStitchProperty, RandomVesselsAcrossFacesEdgesAndCornersKeepTheirTop
       EXPECT_EQ(s.paths.size(), 1u) << what.str();
       EXPECT_TRUE(s.junctions.empty()) << what.str();
       EXPECT_EQ(freeEnds(s), 2) << what.str();
-      EXPECT_EQ(report.cutEndsUnmatched, 0) << what.str();
       EXPECT_EQ(report.pointsDropped, 0) << what.str();
+      // At the corner of 8 pieces a lone kept point between three pieces' copies may find no
+      // partner (1 of 30 trials): dropped as a stray, its two cut ends reported unmatched, the
+      // vessel joined whole around it. Counted, printed; on faces and edges asserted absent.
+      if (pieces == 8)
+      {
+        cornerStrays += report.strayPointsDropped;
+        continue;
+      }
+      EXPECT_EQ(report.cutEndsUnmatched, 0) << what.str();
       EXPECT_EQ(report.strayPointsDropped, 0) << what.str();
     }
   }
-  std::cout << "topology differs in " << topologyDiffers
-            << " of the 150 trials with a branch or 8 pieces\n";
+  std::cout << "topology differs in " << topologyDiffers << " of the 90 trials with a branch; "
+            << cornerStrays << " stray points dropped in the 30 unbranched trials of 8 pieces\n";
 }
 } // namespace
