@@ -185,6 +185,146 @@ std::vector<signed char> majority(const std::vector<signed char>& raw,
   }
   return out;
 }
+
+/// Distance from `p` to the nearest segment (or lone point) of the kept points of fragment `f`.
+double distanceToKept(const SkeletonFragment& f,
+  const std::vector<signed char>& keep,
+  const Vec3& p)
+{
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < f.points.size(); ++a)
+  {
+    if (!keep[a])
+    {
+      continue;
+    }
+    const Vec3& qa = f.points[a].position_World_mm;
+    const bool segment = a + 1 < f.points.size() && keep[a + 1];
+    const Vec3 ab = segment ? f.points[a + 1].position_World_mm - qa : Vec3{};
+    const double length2 = ab.dot(ab);
+    const double t = length2 > 0.0 ? std::clamp((p - qa).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (qa + ab * t - p).norm());
+  }
+  return best;
+}
+
+/// The swap of settleOnePointRuns: the lone kept point g[i] gives way to its nearest copy c
+/// (fragment h) when h's points around the copy were dropped in g's favour. Those points of h
+/// (the contiguous stretch dropped toward g around the copy) that g's other kept points do not
+/// cover are kept again; the swap is made only when they, with h's kept neighbours, form a run of
+/// at least two points. Returns whether it was made (g[i] is then dropped toward h).
+bool giveBack(const std::vector<SkeletonFragment>& fragments,
+  const Copy& c,
+  std::size_t g,
+  std::size_t i,
+  double reach_mm,
+  std::vector<std::vector<signed char>>& keep,
+  std::vector<std::vector<long>>& toward)
+{
+  const auto h = static_cast<std::size_t>(c.fragment);
+  const std::size_t m = keep[h].size();
+  const std::size_t j = std::min(static_cast<std::size_t>(std::lround(c.at)), m - 1);
+  const auto lostToG = [&](std::size_t k)
+  { return !keep[h][k] && toward[h][k] == static_cast<long>(g); };
+  if (!lostToG(j))
+  {
+    return false;
+  }
+  keep[g][i] = 0; // tentatively: which of h's points does g still cover without it?
+  std::size_t first = j, last = j;
+  while (first > 0 && lostToG(first - 1))
+  {
+    --first;
+  }
+  while (last + 1 < m && lostToG(last + 1))
+  {
+    ++last;
+  }
+  std::vector<std::size_t> back;
+  for (std::size_t k = first; k <= last; ++k)
+  {
+    if (distanceToKept(fragments[g], keep[g], fragments[h].points[k].position_World_mm) > reach_mm)
+    {
+      back.push_back(k);
+    }
+  }
+  const bool keptNeighbour = !back.empty() && ((back.front() > 0 && keep[h][back.front() - 1]) ||
+                                                (back.back() + 1 < m && keep[h][back.back() + 1]));
+  const bool contiguous = !back.empty() && back.back() - back.front() + 1 == back.size();
+  if (!contiguous || (back.size() < 2 && !keptNeighbour))
+  {
+    keep[g][i] = 1;
+    return false;
+  }
+  for (const std::size_t k : back)
+  {
+    keep[h][k] = 1;
+    toward[h][k] = -1;
+  }
+  return true;
+}
+
+/// Project rule (issue 19, item 2): a kept run of one point is no path (a polyline needs two
+/// points; the session refuses it). Found on the 256^3 scaling tree with 4 ranks: a branch
+/// leaving its parent at a shallow angle, each rank placing the junction ~4 voxels apart along
+/// the parent; the lower rank's branch lost every point to the other's copy but its attached head
+/// (on the parent), whose one-sided direction failed the copy test. Such a point is settled here:
+/// - swapped back: when its nearest copy h[j] was dropped in its favour, the copy it replaced
+///   takes its place again (giveBack): one run, not a zigzag of one-point runs;
+/// - a copy: when it lies within the copy reach (no direction test: its direction is one-sided or
+///   crosses the switch) of the kept points of the fragment its dropped neighbours went to, it is
+///   dropped as a duplicate of that geometry; not when its two neighbours went to two different
+///   fragments (it bridges them: a path across a corner, SkeletonStitcher's corner test).
+/// Otherwise it is left (it may still bridge two cut ends); the stitcher drops a chain that ends
+/// with fewer than two points (StitchReport::strayPointsDropped).
+void settleOnePointRuns(const std::vector<SkeletonFragment>& fragments,
+  const std::vector<std::vector<std::vector<Copy>>>& copies,
+  double reach_mm,
+  std::vector<std::vector<signed char>>& keep,
+  std::vector<std::vector<long>>& toward)
+{
+  for (std::size_t g = 0; g < fragments.size(); ++g)
+  {
+    const std::size_t n = keep[g].size();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const bool leftDropped = i > 0 && !keep[g][i - 1];
+      const bool rightDropped = i + 1 < n && !keep[g][i + 1];
+      const bool alone = keep[g][i] && (i == 0 || leftDropped) && (i + 1 == n || rightDropped);
+      if (!alone || !(leftDropped || rightDropped))
+      {
+        continue;
+      }
+      long settledToward = -1;
+      if (!copies[g][i].empty() &&
+          giveBack(fragments, copies[g][i].front(), g, i, reach_mm, keep, toward))
+      {
+        settledToward = copies[g][i].front().fragment;
+      }
+      // A point between stretches that went to two different fragments bridges them (a path
+      // across a corner: the two kept runs may lie farther apart than a join reaches): it stays.
+      const bool bridge = leftDropped && rightDropped && toward[g][i - 1] != toward[g][i + 1];
+      for (const std::size_t k : { i - 1, i + 1 })
+      {
+        if (bridge || settledToward >= 0 || k >= n || keep[g][k] || toward[g][k] < 0)
+        {
+          continue; // (i - 1 wraps past n at i = 0)
+        }
+        const auto h = static_cast<std::size_t>(toward[g][k]);
+        if (distanceToKept(fragments[h], keep[h], fragments[g].points[i].position_World_mm) <=
+            reach_mm)
+        {
+          settledToward = toward[g][k];
+        }
+      }
+      if (settledToward >= 0)
+      {
+        keep[g][i] = 0;
+        toward[g][i] = settledToward;
+      }
+    }
+  }
+}
 } // namespace
 
 std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
@@ -309,6 +449,7 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
       }
     }
   }
+  settleOnePointRuns(fragments, copies, copyReach_mm, keep, toward);
   std::vector<OverlapRun> runs;
   for (std::size_t g = 0; g < F; ++g)
   {

@@ -31,6 +31,12 @@ constexpr double kOverlapBandVoxels = 4.0;
 /// vessels of radius >= 1 voxel that do not touch lie > 2 voxels apart.
 constexpr double kCopyReachVoxels = 1.5;
 
+/// Project rule: two consecutive points of a stitched path closer than this many voxels are one
+/// point (two joined runs that both kept it: a zero-length segment has no direction). Far below
+/// any point spacing the coder makes (about a voxel) and far above the round-off of the index
+/// frame (1e-12).
+constexpr double kCoincidentPointVoxels = 1e-3;
+
 /// A kept run of one fragment. A run end that is not the fragment's own end is a Cut end
 /// (neighbourPiece: the piece whose copy won the first dropped point) at the run's end point.
 struct OverlapRun

@@ -86,7 +86,13 @@ std::vector<long> matchCutEnds(const std::vector<OverlapRun>& runs,
       const long sa = static_cast<long>(runs[a / 2].source);
       const long sb = static_cast<long>(runs[b / 2].source);
       const int named = (towardOf(runs, a) == sb ? 1 : 0) + (towardOf(runs, b) == sa ? 1 : 0);
-      if (named == 2)
+      // At an edge or corner two runs may both be cut where one third fragment's copy took
+      // over, a copy that itself lost there to theirs (it kept nothing between them): they are
+      // each other's neighbours across it (the property test's corner of 8 pieces).
+      const long third = towardOf(runs, a);
+      const bool acrossThird =
+        third >= 0 && third == towardOf(runs, b) && third != sa && third != sb;
+      if (named == 2 || acrossThird)
       {
         // Two runs cut where each other's copy took over: the dropped points between them lie
         // within the copy reach of each other, so the ends are at most that and the two gaps to
@@ -127,19 +133,41 @@ std::vector<long> matchCutEnds(const std::vector<OverlapRun>& runs,
   return partner;
 }
 
-/// Appends fragment `g`'s points to `path`, reversed (tangents negated) when `reversed`.
-void appendPoints(SkeletonPath& path, const SkeletonFragment& g, bool reversed)
+/// Appends fragment `g`'s points to `path`, reversed (tangents negated) when `reversed`. Where
+/// two runs meet and both kept one point (within `coincident_mm`), it is appended once: the
+/// stitch makes no zero-length segment (the coder's own points pass as they are).
+void appendPoints(SkeletonPath& path,
+  const SkeletonFragment& g,
+  bool reversed,
+  double coincident_mm)
 {
-  if (!reversed)
+  std::vector<SkeletonPoint> points(g.points.begin(), g.points.end());
+  if (reversed)
   {
-    path.points.insert(path.points.end(), g.points.begin(), g.points.end());
-    return;
+    std::reverse(points.begin(), points.end());
+    for (SkeletonPoint& p : points)
+    {
+      p.tangent_World = p.tangent_World * -1.0;
+    }
   }
-  for (auto it = g.points.rbegin(); it != g.points.rend(); ++it)
+  auto first = points.begin();
+  if (!path.points.empty() &&
+      (first->position_World_mm - path.points.back().position_World_mm).norm() <= coincident_mm)
   {
-    SkeletonPoint p = *it;
-    p.tangent_World = p.tangent_World * -1.0;
-    path.points.push_back(p);
+    ++first;
+  }
+  path.points.insert(path.points.end(), first, points.end());
+}
+
+/// For a loop, drops the last points within `coincident_mm` of point 0 (the loop's closing link
+/// is a junction onto point 0, not a segment), keeping at least two.
+void trimClosedLoop(SkeletonPath& path, double coincident_mm)
+{
+  while (path.points.size() > 2 &&
+         (path.points.back().position_World_mm - path.points.front().position_World_mm).norm() <=
+           coincident_mm)
+  {
+    path.points.pop_back();
   }
 }
 
@@ -156,6 +184,7 @@ ChainEnds walkChain(const std::vector<SkeletonFragment>& f,
   const std::vector<long>& partner,
   std::size_t start,
   std::vector<char>& used,
+  double coincident_mm,
   SkeletonPath& path)
 {
   ChainEnds ends;
@@ -166,7 +195,7 @@ ChainEnds walkChain(const std::vector<SkeletonFragment>& f,
     const std::size_t fragment = entry / 2;
     used[fragment] = 1;
     const bool reversed = entry % 2 == 1; // entered at its tail
-    appendPoints(path, f[fragment], reversed);
+    appendPoints(path, f[fragment], reversed, coincident_mm);
     const std::size_t exit = reversed ? 2 * fragment : 2 * fragment + 1;
     const long next = partner[exit];
     if (next < 0)
@@ -358,7 +387,23 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
   {
     SkeletonPath path;
     path.id = static_cast<int>(s.paths.size());
-    chainEnds.push_back(walkChain(f, partner, start, used, path));
+    const ChainEnds ends = walkChain(f, partner, start, used, coincidentPoint_mm, path);
+    if (ends.closed)
+    {
+      trimClosedLoop(path, coincidentPoint_mm);
+    }
+    if (path.points.size() < 2)
+    {
+      // Project rule: a chain of fewer than two points is no path (the session refuses a
+      // one-point polyline): a stray the resolver could not settle (settleOnePointRuns), dropped;
+      // when no kept point covers it, the coverage check below also counts it as dropped.
+      report.strayPointsDropped += static_cast<int>(path.points.size());
+      report.notes.push_back(describe("a stray point (a chain of one point) dropped",
+        path.points.front().position_World_mm,
+        f[start / 2].piece));
+      return;
+    }
+    chainEnds.push_back(ends);
     s.paths.push_back(std::move(path));
   };
   // Open chains first, from every end that is not joined; then what is left are loops.

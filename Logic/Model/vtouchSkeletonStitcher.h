@@ -29,6 +29,11 @@ struct StitchReport
   /// Points some piece sent that end up farther than the coverage reach from the stitched
   /// skeleton: a stretch no piece kept. Zero by construction; counted so that it is never silent.
   int pointsDropped = 0;
+  /// Points of chains that ended with fewer than two points after joining (a kept run of one
+  /// point that neither a copy took back nor a cut end joined: SkeletonOverlapResolver's
+  /// settleOnePointRuns): dropped, because a path needs two points. Those no kept point covers
+  /// are also in pointsDropped; the others were copies of kept geometry.
+  int strayPointsDropped = 0;
   std::vector<std::string> notes; ///< one sentence per unmatched or unresolved end
 };
 
@@ -48,6 +53,9 @@ struct StitchReport
 ///   on a dropped copy hangs on the kept one), not counting its own end.
 /// - Every point any piece sent is checked against the result: those farther than
 ///   `coverageReach_mm` from it are counted (StitchReport::pointsDropped) and named.
+/// - Every stitched path has at least two points and the stitch adds no zero-length segment:
+///   where two joined runs both kept a point it is kept once, and a chain of one point is dropped
+///   (StitchReport::strayPointsDropped).
 /// Tolerance for a pair of ends: max(joinTolerance_mm, half the smaller radius there).
 class SkeletonStitcher
 {
@@ -62,6 +70,10 @@ public:
   double copyReach_mm = 1.5;
   /// A sent point farther than this from the stitched skeleton is a dropped point. Default 1.5.
   double coverageReach_mm = 1.5;
+  /// Where two joined runs meet, end points closer than this are one (no zero-length segment;
+  /// the coder's own consecutive points are left as they are). Default 1e-3 (the filter:
+  /// kCoincidentPointVoxels voxels).
+  double coincidentPoint_mm = 1e-3;
 
   QSkeleton stitch(const std::vector<SkeletonFragment>& fragments, StitchReport& report) const;
 };

@@ -162,6 +162,7 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   const double voxel_mm = *std::max_element(frame.spacing_mm.begin(), frame.spacing_mm.end());
   stitcher.copyReach_mm = kCopyReachVoxels * voxel_mm;
   stitcher.coverageReach_mm = kCopyReachVoxels * voxel_mm;
+  stitcher.coincidentPoint_mm = kCoincidentPointVoxels * voxel_mm;
   result.skeleton = stitcher.stitch(all, result.stitch);
   result.stitchSeconds = since(stitchStart);
   return true;
@@ -224,6 +225,7 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
   addIntValue(fd, "StitchBifurcationsWithoutBranch", result.stitch.bifurcationsWithoutBranch);
   addIntValue(fd, "StitchDuplicatesRemoved", result.stitch.duplicatesRemoved);
   addIntValue(fd, "StitchPointsDropped", result.stitch.pointsDropped);
+  addIntValue(fd, "StitchStrayPointsDropped", result.stitch.strayPointsDropped);
   vtkNew<vtkIntArray> extents;
   extents->SetName("PieceInputExtents");
   extents->SetNumberOfComponents(6);

@@ -14,7 +14,6 @@ namespace
 using namespace vtouch;
 using namespace vtouch_test;
 
-
 /// A vessel along y (y = 1 .. 19, one point a voxel) at x = 10 + offset + wobble sin(k y + phase).
 std::vector<SkeletonPoint> alongFace(double offset, double wobble, double phase)
 {
@@ -255,5 +254,59 @@ TEST(SkeletonOverlap, AVesselAlongTheEdgeOfFourPiecesIsKeptOnce)
   EXPECT_EQ(report.cutEndsUnmatched, 0);
   EXPECT_EQ(report.pointsDropped, 0);
   EXPECT_EQ(s.pointCount(), 19u); // one copy of each point
+}
+} // namespace
+
+namespace
+{
+/// A parent vessel along y at x = 11 (in piece 1, inside piece 0's band) and a branch leaving it
+/// at 20 degrees into piece 1, with its junction at parent point y = `junctionY`; the branch's
+/// points from `firstBranchY` on lie on one line from the junction at y = 6 (both pieces code the
+/// branch alike away from the junction).
+QSkeleton parentAndShallowBranch(double junctionY)
+{
+  const double angle = 20.0 * 3.14159265358979 / 180.0;
+  QSkeleton s;
+  std::vector<SkeletonPoint> parent;
+  for (int i = 0; i < 19; ++i)
+  {
+    parent.push_back(point(11.0, 1.0 + i, 5.0, 2.0));
+  }
+  std::vector<SkeletonPoint> branch{ point(11.0, junctionY, 5.0, 2.0) };
+  for (int k = 1; k < 12; ++k)
+  {
+    const double t = (junctionY - 6.0) / std::cos(angle) + k; // arc length from (11, 6)
+    branch.push_back(point(11.0 + t * std::sin(angle), 6.0 + t * std::cos(angle), 5.0, 2.0));
+  }
+  s.paths.push_back(path(0, parent));
+  s.paths.push_back(path(1, branch));
+  attach(s, 1, Junction::End::Head, 0, static_cast<int>(junctionY) - 1);
+  return s;
+}
+
+TEST(SkeletonOverlap, AJunctionPlacedApartByTwoPiecesLeavesNoOnePointPath)
+{
+  // The 256^3 scaling tree with 4 ranks (Docs/CLIENT-SERVER.md): a branch leaves its parent at a
+  // shallow angle inside the band and each rank places the junction ~4 voxels apart along the
+  // parent. Piece 0's branch loses every point to piece 1's copy but its attached head (on the
+  // parent, 1.4 voxel off piece 1's branch), whose one-sided direction fails the copy test: main
+  // stitched that head alone, a one-point path the session refuses. It is a copy of piece 1's
+  // branch: dropped as a duplicate (settleOnePointRuns), no stray left.
+  StitchReport report;
+  const QSkeleton s = clipAndStitch(
+    { parentAndShallowBranch(10.0), parentAndShallowBranch(6.0) }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  for (const SkeletonPath& p : s.paths)
+  {
+    EXPECT_GE(p.points.size(), 2u) << "path " << p.id;
+  }
+  EXPECT_EQ(s.paths.size(), 2u);
+  EXPECT_EQ(s.junctions.size(), 1u);
+  EXPECT_EQ(freeEnds(s), 3);
+  EXPECT_EQ(cycleRank(s), 0);
+  EXPECT_EQ(report.cutEndsUnmatched, 0);
+  EXPECT_EQ(report.pointsDropped, 0);
+  EXPECT_EQ(report.strayPointsDropped, 0);
+  EXPECT_TRUE(allPointsNear(s, parentAndShallowBranch(6.0), 1e-9)); // piece 1's copy, whole
 }
 } // namespace

@@ -1,0 +1,73 @@
+"""The stitched topology of VesselCenterline on N pvserver ranks against one (issue 19, item 2).
+
+    VESSELTOUCH_PLUGIN=<build>/lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so \\
+        pvpython Testing/ParaView/clientserver/measure_cs_topology.py --volume tree.nrrd \\
+        --ranks 1 2 4 [--lower 500 --upper 65535]
+
+For each rank count a pvserver starts on 127.0.0.1, reads the volume (each rank its piece) and
+runs VesselCenterline thresholded (DistributedExtraction on with more than one rank). Printed:
+paths, points, vessel ends, bifurcations and loops (vtouch_skeleton_graph.graph), the shortest
+polyline, and the stitch's field arrays (Stitch*). The scaling bench's tree:
+`scaling_bench.write_tree_nrrd(path, (256, 256, 256))` (Utilities/bench). A measurement, not a
+test: nothing is asserted.
+"""
+
+import argparse
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.dirname(HERE)]
+from vtouch_pvserver import ParallelServer  # noqa: E402
+from vtouch_skeleton_graph import graph  # noqa: E402
+
+from paraview import servermanager as sm  # noqa: E402
+from paraview import simple  # noqa: E402
+
+
+def measure(volume, ranks, lower, upper):
+    server = ParallelServer(ranks=ranks)
+    server.start()
+    try:
+        simple.Connect("127.0.0.1", server.port)
+        plugin = os.environ["VESSELTOUCH_PLUGIN"]
+        simple.LoadPlugin(plugin, remote=True)
+        simple.LoadPlugin(plugin, remote=False)
+        reader = simple.OpenDataFile(volume)
+        centerline = simple.VesselCenterline(Input=reader, AutomaticIntensityRange=0,
+                                             LowerThreshold=lower, UpperThreshold=upper,
+                                             DistributedExtraction=1 if ranks > 1 else 0)
+        centerline.UpdatePipeline()
+        data = sm.Fetch(centerline)
+        g = graph(data, 1.0)
+        fd = data.GetFieldData()
+        stitch = {fd.GetArrayName(i): fd.GetArray(i).GetTuple(0)[0]
+                  for i in range(fd.GetNumberOfArrays())
+                  if fd.GetArrayName(i).startswith("Stitch")}
+        shortest = min(len(c) for c in g["chains"]) if g["chains"] else 0
+        print("ranks %d: %d paths, %d points, %d ends, %d bifurcations, %d loops, shortest "
+              "polyline %d points; %s" % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(),
+                                          g["ends"], len(g["bifurcations"]), g["cycles"],
+                                          shortest, stitch))
+        simple.Disconnect()
+    finally:
+        server.stop()
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--volume", required=True)
+    parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
+    parser.add_argument("--lower", type=float, default=500.0)
+    parser.add_argument("--upper", type=float, default=65535.0)
+    args = parser.parse_args()
+    if not os.path.exists(args.volume):
+        sys.exit("no volume at %s" % args.volume)
+    if "VESSELTOUCH_PLUGIN" not in os.environ:
+        sys.exit("set VESSELTOUCH_PLUGIN to the plugin's VesselTouch.so")
+    for ranks in args.ranks:
+        measure(args.volume, ranks, args.lower, args.upper)
+
+
+if __name__ == "__main__":
+    main()
