@@ -2,6 +2,7 @@
 
 #include "vtouchCandidateRegionRunner.h"
 #include "vtouchDistributedCenterline.h"
+#include "vtouchDistributedRawRegion.h"
 #include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
@@ -347,13 +348,6 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
   }
   else
   {
-    if (pieces > 1 && !this->WarnedUndistributed)
-    {
-      this->WarnedUndistributed = true; // once per filter: every update asks again
-      vtkWarningMacro("VesselCenterline: the raw seeded mode (AutomaticIntensityRange with "
-                      "UseSeedPoint) is not distributed yet; the first rank codes the whole "
-                      "volume.");
-    }
     // The whole volume as one piece: readers that split by piece number read it all.
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
@@ -470,6 +464,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   double seed[3] = { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] };
   std::shared_ptr<const vtouch::SparseVesselMask> mask;
   std::vector<std::pair<std::string, double>> candidateSeconds;
+  bool codeFromSeed = true;
   if (this->AutomaticIntensityRange)
   {
     vtouch::CandidateRegionRequest request;
@@ -484,7 +479,9 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     vtouch::CandidateRegionOutcome region;
     try
     {
-      region = vtouch::runCandidateRegion(input, scalars, request);
+      // Distributed raw seeded mode: the region the ranks computed together (the hook).
+      region = this->DistributedRegion ? *this->DistributedRegion
+                                       : vtouch::runCandidateRegion(input, scalars, request);
     }
     catch (const vtouch::Cancelled&)
     {
@@ -508,7 +505,9 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     if (!region.binary)
     {
       mask = region.mask;
-      if (this->UseSeedPoint)
+      // Distributed: only the seed's rank codes from the seed; the others from their own roots.
+      codeFromSeed = region.seedIndex[0] >= 0;
+      if (this->UseSeedPoint && codeFromSeed)
       {
         // The seed voxel the region grew from (world), for the coder's root.
         double origin[3], spacing[3];
@@ -529,9 +528,12 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   }
   const Settings s{ lower,
     upper,
-    this->UseSeedPoint,
+    this->UseSeedPoint && codeFromSeed,
     { seed[0], seed[1], seed[2] },
-    this->MinimumComponentSize,
+    this->DistributedRegion
+      ? vtouch::DistributedRawRegion::componentSizeVoxels(
+          this->MinimumComponentSize, this->GetGhostMarginVoxels(input->GetSpacing()))
+      : this->MinimumComponentSize,
     this->MinimumBranchLength,
     this->SmoothingWindow,
     this->UseVesselness,
@@ -652,11 +654,8 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
 
 bool vtkVesselTouchCenterlineFilter::Distributed(int piece, int pieces) const
 {
-  // The raw seeded mode needs the range and the grown region across ranks: not yet (departure
-  // in Docs/CLIENT-SERVER.md); it keeps the whole volume on the first rank.
-  const bool seededRaw = this->AutomaticIntensityRange && this->UseSeedPoint;
-  return this->DistributedExtraction && !seededRaw &&
-    vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
+  return this->DistributedExtraction &&
+         vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
 }
 
 int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]) const
@@ -670,7 +669,11 @@ int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]
   rule.minimumBranchLength = this->MinimumBranchLength;
   rule.useVesselness = this->UseVesselness;
   rule.vesselnessSigmaMaximum_mm = this->VesselnessSigmaMaximum;
-  return rule.voxels({ spacing[0], spacing[1], spacing[2] });
+  const int margin = rule.voxels({ spacing[0], spacing[1], spacing[2] });
+  // The raw seeded mode: the seed's rank estimates the range on the seed's neighbourhood.
+  return this->AutomaticIntensityRange && this->UseSeedPoint
+           ? std::max(margin, vtouch::DistributedRawRegion::minimumMarginVoxels())
+           : margin;
 }
 
 int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** inputVector,
@@ -687,11 +690,37 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   vtouch::IndexFrame frame;
   vtouch::VoxelExtent6 whole{ 0, -1, 0, -1, 0, -1 };
   double largestSpacing = 1.0;
+  if (vtkInformation* in = inputVector[0]->GetInformationObject(0))
+  {
+    in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
+  }
+  // The raw seeded mode: the range and the region with the other ranks (collective), then the
+  // piece's own run codes that region (the hook in ExtractVolume).
+  const auto extractStart = std::chrono::steady_clock::now();
+  vtouch::CandidateRegionOutcome region, rest;
+  vtouch::DistributedRawRegion::Report regionReport;
+  const bool seededRaw = this->AutomaticIntensityRange && this->UseSeedPoint;
+  if (seededRaw)
+  {
+    vtouch::CandidateRegionRequest request;
+    request.useSeed = true;
+    std::copy(this->SeedPoint, this->SeedPoint + 3, request.seed_World_mm);
+    vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
+    scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
+    region =
+      vtouch::DistributedRawRegion::run(controller, input, scalars, whole, request, regionReport);
+    rest = vtouch::DistributedRawRegion::splitSeedComponent(region);
+    this->DistributedRegion = &region;
+  }
   if (input)
   {
     this->QuietErrors = true;
-    const auto extractStart = std::chrono::steady_clock::now();
     this->ExtractVolume(inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), own);
+    this->DistributedRegion = nullptr;
+    if (seededRaw)
+    {
+      vtouch::DistributedRawRegion::addReport(own->GetFieldData(), regionReport);
+    }
     report.extractSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - extractStart).count();
     this->QuietErrors = false;
@@ -700,6 +729,11 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     {
       this->ExtractionMessage = "VesselCenterline: this piece's skeleton is unreadable: " + error;
       skeleton = vtouch::QSkeleton{};
+    }
+    if (rest.ok)
+    {
+      // The seed's rank: the parts of the network that reach the seed only outside its piece.
+      this->AddRestOfRegion(inputVector, input, rest, skeleton);
     }
     report.rangeLower = this->IntensityRangeUsed[0];
     report.rangeUpper = this->IntensityRangeUsed[1];
@@ -710,9 +744,8 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     {
       report.readerBytes = bytes->GetComponent(0, 0);
     }
-    vtkInformation* in = inputVector[0]->GetInformationObject(0);
-    in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
   }
+  this->DistributedRegion = nullptr;
   // Collective: every rank gets here once per run, whatever its piece gave.
   vtouch::DistributedCenterline::Result result;
   output->Initialize();
@@ -767,6 +800,27 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     vtkErrorMacro(<< message);
   }
   return 1;
+}
+
+void vtkVesselTouchCenterlineFilter::AddRestOfRegion(vtkInformationVector** inputVector,
+  vtkImageData* input,
+  const vtouch::CandidateRegionOutcome& rest,
+  vtouch::QSkeleton& skeleton)
+{
+  const std::string message = this->ExtractionMessage;
+  vtkNew<vtkPolyData> other;
+  this->QuietErrors = true;
+  this->DistributedRegion = &rest;
+  this->ExtractVolume(inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), other);
+  this->DistributedRegion = nullptr;
+  this->QuietErrors = false;
+  this->ExtractionMessage = message; // the seed's component's run speaks for the piece
+  vtouch::QSkeleton more;
+  std::string error;
+  if (other->GetNumberOfLines() > 0 && vtouch::PolyDataToQSkeleton().convert(other, more, error))
+  {
+    skeleton = vtouch::DistributedRawRegion::merged(skeleton, more);
+  }
 }
 
 bool vtkVesselTouchCenterlineFilter::CancelRequested()
