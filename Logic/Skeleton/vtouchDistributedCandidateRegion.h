@@ -59,8 +59,10 @@ public:
 
   struct Result
   {
-    VesselCandidateRegion::Result
-      region;                ///< on this rank's held piece; seed (local) on the seed's rank
+    /// The region on this rank's held piece (its seed, local, on the seed's rank only); range
+    /// and message the same on every rank; coreVoxels counts a core held by two ranks twice
+    /// (only whether it is 0 decides).
+    VesselCandidateRegion::Result region;
     bool seedHere = false;   ///< this rank holds the coder's seed
     int growthRounds = 0;    ///< the growth's rounds (the same on every rank)
     int componentRounds = 0; ///< the seed component's rounds after the neck cut

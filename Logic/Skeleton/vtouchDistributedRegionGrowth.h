@@ -153,8 +153,9 @@ public:
     std::string message;              ///< why it did not settle
   };
 
-  /// Collective: the rounds to the end. `seed` (local index) on the rank that holds the seed,
-  /// empty elsewhere (a rank may also start from several). `mask` is this piece's grid.
+  /// Collective: the rounds to the end. `seeds` (local linear indices): the seed on the rank
+  /// that owns it, empty elsewhere (a rank may start from several). `mask` is this piece's grid
+  /// (not finalized). `maximumRounds`: the cap (every rank stops at the same round).
   Outcome run(RankCollectives& collectives,
     SparseVesselMask& mask,
     const std::vector<std::uint64_t>& seeds,

@@ -9,9 +9,11 @@ seed on its root vessel (port 1's first point):
 - built in (one process): the reference;
 - on the 2-rank server with DistributedExtraction: the seed's rank estimates the range and every
   rank grows the region with the others in rounds (vtouch::DistributedRawRegion); the output has
-  the built-in range (IntensityRangeUsed), reports its rounds (RegionGrowthRounds >= 2: the tree
+  the built-in range (IntensityRangeUsed), reports its rounds (RegionGrowthRounds >= 3: the tree
   crosses the piece face z = 55 and comes back), the built-in topology (vessel ends,
-  bifurcations; vtouch_skeleton_graph) and its points near the built-in ones (see POINTS below);
+  bifurcations; vtouch_skeleton_graph), the seed's rank's points within 0.1 voxel of the
+  built-in ones (90 % at least: parts that reach the seed only outside its piece are coded from
+  roots of their own) and every point within the coder's root envelope + 0.1 voxel;
 - a seed on the background, on 2 ranks: the built-in message and an empty output; a watchdog
   kills the server if a run does not return (a rank waiting for the others forever).
 Exits non-zero on any failure.
@@ -154,9 +156,12 @@ def distributed(server, path, refs):
                   "%s: neither rank read the whole volume (%s)" % (name, extents))
             check(not message_of(data), "%s: no message (%r)" % (name, message_of(data)))
             check(used == rng, "%s: the built-in estimated range (%s vs %s)" % (name, used, rng))
-            check(rounds is not None and rounds[0][0] >= 2,
-                  "%s: the growth's rounds are reported and cross the piece face (%s)"
-                  % (name, rounds))
+            # Round 1 grows the seed's piece, round 2 the other piece from what it was told,
+            # round 3 the seed's piece again (the network came back into it), a last one finds
+            # nothing new.
+            check(rounds is not None and rounds[0][0] >= 3,
+                  "%s: the growth's rounds are reported, and the network leaves the seed's "
+                  "piece and comes back (%s rounds)" % (name, rounds))
             check(got is not None and topology(got) == topology(reference),
                   "%s: the built-in topology (%s vs %s)"
                   % (name, topology(got) if got else None, topology(reference)))
