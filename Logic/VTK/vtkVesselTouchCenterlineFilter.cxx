@@ -5,6 +5,7 @@
 #include "vtouchDistributedRawRegion.h"
 #include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchRawSkeletonRefinement.h"
+#include "vtouchSeedComponentSplit.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include "vtkCellArray.h"
@@ -819,7 +820,7 @@ void vtkVesselTouchCenterlineFilter::AddRestOfRegion(vtkInformationVector** inpu
   std::string error;
   if (other->GetNumberOfLines() > 0 && vtouch::PolyDataToQSkeleton().convert(other, more, error))
   {
-    skeleton = vtouch::DistributedRawRegion::merged(skeleton, more);
+    skeleton = vtouch::SeedComponentSplit::appended(skeleton, more);
   }
 }
 

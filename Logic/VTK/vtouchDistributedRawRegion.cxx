@@ -3,6 +3,7 @@
 #include "vtouchControllerCollectives.h"
 #include "vtouchDistributedCandidateRegion.h"
 #include "vtouchDistributedCenterline.h"
+#include "vtouchSeedComponentSplit.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -155,46 +156,15 @@ CandidateRegionOutcome DistributedRawRegion::splitSeedComponent(CandidateRegionO
   {
     return rest;
   }
-  SparseVesselMask component = TubeNeckCutter::component(*seeded.mask, seeded.seedIndex);
-  if (component.vesselCount() == seeded.mask->vesselCount())
+  SeedComponentSplit::Parts parts = SeedComponentSplit::split(*seeded.mask, seeded.seedIndex);
+  if (parts.rest.vesselCount() == 0)
   {
     return rest; // the seed's component is the whole region
   }
-  SparseVesselMask others(seeded.mask->dims());
-  seeded.mask->forEach(
-    [&](std::uint64_t lin)
-    {
-      if (!component.test(lin))
-      {
-        others.set(lin);
-      }
-    });
-  others.finalize();
-  seeded.mask = std::make_shared<const SparseVesselMask>(std::move(component));
-  rest.mask = std::make_shared<const SparseVesselMask>(std::move(others));
+  seeded.mask = std::make_shared<const SparseVesselMask>(std::move(parts.seedComponent));
+  rest.mask = std::make_shared<const SparseVesselMask>(std::move(parts.rest));
   rest.ok = true;
   return rest;
-}
-
-QSkeleton DistributedRawRegion::merged(const QSkeleton& a, const QSkeleton& b)
-{
-  QSkeleton out = a;
-  const int paths = static_cast<int>(a.paths.size());
-  const int junctions = static_cast<int>(a.junctions.size());
-  for (SkeletonPath p : b.paths)
-  {
-    p.id += paths;
-    p.head.junction += p.head.junction >= 0 ? junctions : 0;
-    p.tail.junction += p.tail.junction >= 0 ? junctions : 0;
-    out.paths.push_back(std::move(p));
-  }
-  for (Junction j : b.junctions)
-  {
-    j.childPath += paths;
-    j.parentPath += paths;
-    out.junctions.push_back(j);
-  }
-  return out;
 }
 
 int DistributedRawRegion::minimumMarginVoxels()

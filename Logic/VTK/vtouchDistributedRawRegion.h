@@ -7,7 +7,6 @@
 
 #include "vtouchCandidateRegionRunner.h"
 #include "vtouchPieceOwnership.h"
-#include "vtouchQSkeleton.h"
 
 class vtkMultiProcessController;
 
@@ -49,8 +48,6 @@ public:
   /// The rest is not ok (nothing to code) when the seed's component is the whole region, or when
   /// `seeded` has no seed here.
   static CandidateRegionOutcome splitSeedComponent(CandidateRegionOutcome& seeded);
-  /// `b`'s paths and junctions after `a`'s (indices shifted).
-  static QSkeleton merged(const QSkeleton& a, const QSkeleton& b);
 
   /// Collective: every rank calls it once per run, whatever its input (null: an empty piece;
   /// every rank then gets the same message). `piece` is the rank's input (its extent in the

@@ -6,6 +6,7 @@
 #include "vtouchDistributedRegionGrowth.h"
 #include "vtouchInProcessCollectives.h"
 #include "vtouchRawAngiogramTestImages.h"
+#include "vtouchSeedComponentSplit.h"
 #include "vtouchVesselCandidateRegion.h"
 
 #include <gtest/gtest.h>
@@ -391,6 +392,59 @@ TEST(DistributedCandidateRegion, GhostMarginNarrowerThanTheSeedsNeighbourhoodSay
     EXPECT_FALSE(r.ok);
     EXPECT_NE(r.message.find("ghost margin"), std::string::npos) << r.message;
   }
+}
+
+TEST(SeedComponentSplit, PartsReachingTheSeedOutsideThePieceAreTheRest)
+{
+  // A piece of a U: the seed's leg, and the other leg that joins it only beyond the piece.
+  SparseVesselMask mask({ 12, 6, 10 });
+  const auto lin = [](std::int64_t i, std::int64_t j, std::int64_t k)
+  { return static_cast<std::uint64_t>(i + 12 * (j + 6 * k)); };
+  for (std::int64_t k = 0; k < 10; ++k)
+  {
+    mask.set(lin(2, 3, k));
+    mask.set(lin(9, 3, k));
+  }
+  mask.finalize();
+  const SeedComponentSplit::Parts parts = SeedComponentSplit::split(mask, { 2, 3, 1 });
+  EXPECT_EQ(parts.seedComponent.vesselCount(), 10u);
+  EXPECT_EQ(parts.rest.vesselCount(), 10u);
+  EXPECT_TRUE(parts.seedComponent.test(lin(2, 3, 9)));
+  EXPECT_TRUE(parts.rest.test(lin(9, 3, 0)));
+  EXPECT_FALSE(parts.rest.test(lin(2, 3, 0)));
+  // A seed whose component is the whole mask leaves no rest.
+  EXPECT_EQ(SeedComponentSplit::split(parts.seedComponent, { 2, 3, 4 }).rest.vesselCount(), 0u);
+}
+
+TEST(SeedComponentSplit, AppendedSkeletonShiftsPathAndJunctionIndices)
+{
+  const auto path = [](int id, int head, int tail)
+  {
+    SkeletonPath p;
+    p.id = id;
+    p.head.junction = head;
+    p.tail.junction = tail;
+    p.points.resize(3);
+    return p;
+  };
+  QSkeleton a, b;
+  a.paths = { path(0, -1, -1), path(1, 0, -1) };
+  a.junctions.push_back(Junction{ 1, Junction::End::Head, 0, 1 });
+  b.paths = { path(0, -1, 0), path(1, -1, -1) };
+  b.junctions.push_back(Junction{ 0, Junction::End::Tail, 1, 2 });
+  ASSERT_EQ(a.validate(), "");
+  ASSERT_EQ(b.validate(), "");
+  const QSkeleton c = SeedComponentSplit::appended(a, b);
+  EXPECT_EQ(c.validate(), "") << "ids and back references still consistent";
+  ASSERT_EQ(c.paths.size(), 4u);
+  ASSERT_EQ(c.junctions.size(), 2u);
+  EXPECT_EQ(c.paths[2].id, 2);
+  EXPECT_EQ(c.paths[2].tail.junction, 1);
+  EXPECT_EQ(c.paths[3].head.junction, -1);
+  EXPECT_EQ(c.junctions[1].childPath, 2);
+  EXPECT_EQ(c.junctions[1].parentPath, 3);
+  EXPECT_EQ(c.junctions[1].parentPoint, 2);
+  EXPECT_EQ(c.junctions[0].childPath, 1) << "a's junctions unchanged";
 }
 
 } // namespace
