@@ -63,9 +63,9 @@ public:
     /// and message the same on every rank; coreVoxels counts a core held by two ranks twice
     /// (only whether it is 0 decides).
     VesselCandidateRegion::Result region;
-    bool seedHere = false;   ///< this rank holds the coder's seed
-    int growthRounds = 0;    ///< the growth's rounds (the same on every rank)
-    int componentRounds = 0; ///< the seed component's rounds after the neck cut
+    bool seedHere = false;            ///< this rank holds the coder's seed
+    int growthRounds = 0;             ///< the growth's rounds (the same on every rank)
+    int componentRounds = 0;          ///< the seed component's rounds after the neck cut
     std::uint64_t reportedVoxels = 0; ///< voxels this rank sent, both growths
   };
 
@@ -170,11 +170,13 @@ DistributedCandidateRegion::Result DistributedCandidateRegion::extract(const Vol
     IntensityRange range;
     // The seed's cube must be inside this piece (or stop at the volume's faces).
     const int c = IntensityRangeParameters{}.neighbourhoodHalfSize_voxels;
+    // (The cube as the single run clamps it to the volume, inside the held box.)
     bool fits = true;
-    for (int a = 0; a < 3; ++a)
+    const VoxelBox& held = layout.mine();
+    for (std::size_t a = 0; a < 3; ++a)
     {
-      fits = fits && (local[a] - c >= 0 || seed[a] - c < 0) &&
-             (local[a] + c < piece.dims[a] || seed[a] + c >= layout.wholeDims[a]);
+      fits = fits && std::max<std::int64_t>(0, seed[a] - c) >= held.lo[a] &&
+             std::min<std::int64_t>(layout.wholeDims[a] - 1, seed[a] + c) <= held.hi[a];
     }
     if (!fits)
     {

@@ -386,11 +386,16 @@ TEST(DistributedCandidateRegion, SeedOnBackgroundOrOutsideGivesEveryRankTheMessa
 TEST(DistributedCandidateRegion, GhostMarginNarrowerThanTheSeedsNeighbourhoodSaysSo)
 {
   const SyntheticAngiogram g = treeVolume();
-  // The seed 3 voxels below the face z = 39: its 24-voxel cube reaches beyond a 4-voxel margin.
-  for (const RankRegion& r : distributedRegion(g, { 30, 28, 36 }, 2, 4, nullptr))
+  // Seeds 3 voxels below and above the face z = 39 (owned by the lower and the upper piece):
+  // their 24-voxel cubes reach beyond a 4-voxel margin, on either side.
+  for (std::int64_t z : { 36, 42 })
   {
-    EXPECT_FALSE(r.ok);
-    EXPECT_NE(r.message.find("ghost margin"), std::string::npos) << r.message;
+    for (const RankRegion& r : distributedRegion(g, { 30, 28, z }, 2, 4, nullptr))
+    {
+      EXPECT_FALSE(r.ok);
+      EXPECT_NE(r.message.find("ghost margin"), std::string::npos)
+        << "z " << z << ": " << r.message;
+    }
   }
 }
 
