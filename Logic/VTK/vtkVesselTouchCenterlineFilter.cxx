@@ -755,7 +755,12 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   {
     return 1; // not the first rank: an empty piece of the output
   }
-  fillOutput(result.skeleton, output);
+  if (!result.skeleton.empty())
+  {
+    // (An empty skeleton's zero-tuple topology arrays would make the client lose every field
+    // array on the way, the message with them.)
+    fillOutput(result.skeleton, output);
+  }
   vtkFieldData* fd = output->GetFieldData();
   // The first rank's run data (range, factor, stage times, ...), then the stitch's.
   vtkFieldData* ownFd = own->GetFieldData();

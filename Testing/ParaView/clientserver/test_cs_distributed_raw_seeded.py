@@ -133,7 +133,12 @@ def distributed(server, path, refs):
                     data.GetNumberOfPoints(), [data.GetFieldData().GetArrayName(i) for i in
                                                range(data.GetFieldData().GetNumberOfArrays())]))
                 check(data.GetNumberOfPoints() == 0, "background: the output is empty")
-                # The first rank reports the message (vtkErrorMacro, in the server's output).
+                check(message_of(data) == message, "background: the built-in message in the "
+                      "output's field data (%r vs %r)" % (message_of(data), message))
+                pieces = field(data, "DistributedPieces")
+                check(pieces is not None and int(pieces[0][0]) == 2,
+                      "background: both ranks took part (%s)" % pieces)
+                # And the first rank says it (vtkErrorMacro, in the server's output).
                 check(message in server.output(), "background: the server says the built-in "
                       "message (%r)" % message)
                 simple.Delete(centerline)
