@@ -70,8 +70,8 @@ public:
     double joinTolerance_mm,
     Result& result);
   /// The stitch's and the ranks' reports as field data of the stitched output (the arrays
-  /// DistributedPieces, GhostMarginVoxels, Stitch* (StitchDuplicatesRemoved, StitchPointsDropped
-  /// among them), Piece*, DistributedGatherSeconds,
+  /// DistributedPieces, GhostMarginVoxels, Stitch* (StitchDuplicatesRemoved,
+  /// StitchBandStubsDropped, StitchPointsDropped among them), Piece*, DistributedGatherSeconds,
   /// DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank
   /// that found vessels used another intensity range than `rangeUsed` (also
   /// PieceIntensityRangesDiffer).

@@ -2,23 +2,26 @@
 click on a raw angiogram: AutomaticIntensityRange and UseSeedPoint) distributed over a 2-rank
 pvserver against the built-in run on the same volume.
 
-Run as ``pvpython test_cs_distributed_raw_seeded.py`` with VESSELTOUCH_PLUGIN set, on a display
+Run as ``pvpython test_cs_distributed_raw_seeded.py [--ranks N]`` (2 by default, the ctest; 4
+splits the volume in y and z, Docs/CLIENT-SERVER.md) with VESSELTOUCH_PLUGIN set, on a display
 (vtouch-xvfb-run). VesselPhantom's raw-angiogram shape (a random vascular tree with partial
 volume, tissue, clutter, bias and noise) at 112^3 is written as raw NRRD and extracted from a
 seed on its root vessel (port 1's first point):
 - built in (one process): the reference;
-- on the 2-rank server with DistributedExtraction: the seed's rank estimates the range and every
+- on the N-rank server with DistributedExtraction: the seed's rank estimates the range and every
   rank grows the region with the others in rounds (vtouch::DistributedRawRegion); the output has
   the built-in range (IntensityRangeUsed), reports its rounds (RegionGrowthRounds >= 3: the tree
   crosses the piece face z = 55 and comes back), the built-in topology (vessel ends,
-  bifurcations; vtouch_skeleton_graph), the seed's rank's points within 0.1 voxel of the
-  built-in ones (90 % at least: parts that reach the seed only outside its piece are coded from
-  roots of their own) and every point within the coder's root envelope + 0.1 voxel;
-- a seed on the background, on 2 ranks: the built-in message and an empty output; a watchdog
+  bifurcations; vtouch_skeleton_graph; no band stub left unmatched: StitchCutEndsUnmatched 0),
+  the seed's rank's points (its owned box) within 0.1 voxel of the built-in ones (90 % at
+  least: parts that reach the seed only outside its piece are coded from roots of their own)
+  and every point within the coder's root envelope + 0.1 voxel;
+- a seed on the background, on N ranks: the built-in message and an empty output; a watchdog
   kills the server if a run does not return (a rank waiting for the others forever).
 Exits non-zero on any failure.
 """
 
+import argparse
 import os
 import shutil
 import sys
@@ -53,6 +56,12 @@ BACKGROUND_SEED = [3.0, 3.0, 3.0]  # a corner of tissue, far from every vessel
 
 def topology(g):
     return {"ends": g["ends"], "bifurcations": len(g["bifurcations"]), "cycles": g["cycles"]}
+
+
+def unpaired(a, b, reach_voxels=4.0):
+    """The points of `a` with no point of `b` within `reach_voxels` (1 mm voxels), rounded."""
+    return [[round(float(v), 1) for v in x] for x in a
+            if not any(np.linalg.norm(np.asarray(x) - np.asarray(y)) <= reach_voxels for y in b)]
 
 
 def field(data, name):
@@ -129,36 +138,40 @@ def distributed(server, path, refs):
             data = sm.Fetch(centerline, 0)  # the first rank's: the stitched output and its fields
             got = graph(data, 1.0) if data.GetNumberOfPoints() else None
             if name == "background":
-                print("background on 2 ranks: %d points, field arrays %s" % (
-                    data.GetNumberOfPoints(), [data.GetFieldData().GetArrayName(i) for i in
+                print("background on %d ranks: %d points, field arrays %s" % (
+                    RANKS, data.GetNumberOfPoints(), [data.GetFieldData().GetArrayName(i) for i in
                                                range(data.GetFieldData().GetNumberOfArrays())]))
                 check(data.GetNumberOfPoints() == 0, "background: the output is empty")
                 check(message_of(data) == message, "background: the built-in message in the "
                       "output's field data (%r vs %r)" % (message_of(data), message))
                 pieces = field(data, "DistributedPieces")
-                check(pieces is not None and int(pieces[0][0]) == 2,
-                      "background: both ranks took part (%s)" % pieces)
+                check(pieces is not None and int(pieces[0][0]) == RANKS,
+                      "background: every rank took part (%s)" % pieces)
                 # And the first rank says it (vtkErrorMacro, in the server's output).
                 check(message in server.output(), "background: the server says the built-in "
                       "message (%r)" % message)
                 simple.Delete(centerline)
                 continue
             pieces = field(data, "DistributedPieces")
-            check(pieces is not None and int(pieces[0][0]) == 2,
-                  "%s: the extraction ran on both ranks (%s)" % (name, pieces))
+            check(pieces is not None and int(pieces[0][0]) == RANKS,
+                  "%s: the extraction ran on every rank (%s)" % (name, pieces))
             rounds = field(data, "RegionGrowthRounds")
             used = field(data, "IntensityRangeUsed")
-            print("%s on 2 ranks: %d paths, %s; range %s; growth rounds %s, component rounds %s,"
-                  " voxels sent by rank 0 %s; stitch joined %s, unmatched %s"
-                  % (name, got["paths"] if got else 0, topology(got) if got else None, used,
-                     rounds, field(data, "RegionComponentRounds"),
+            unmatched = field(data, "StitchCutEndsUnmatched")
+            print("%s on %d ranks: %d paths, %s; range %s; growth rounds %s, component rounds %s,"
+                  " voxels sent by rank 0 %s; stitch joined %s, unmatched %s, band stubs dropped "
+                  "%s, points dropped %s"
+                  % (name, RANKS, got["paths"] if got else 0, topology(got) if got else None,
+                     used, rounds, field(data, "RegionComponentRounds"),
                      field(data, "RegionVoxelsSent"), field(data, "StitchCutEndsJoined"),
-                     field(data, "StitchCutEndsUnmatched")))
+                     unmatched, field(data, "StitchBandStubsDropped"),
+                     field(data, "StitchPointsDropped")))
             extents = field(data, "PieceInputExtents")
             print("  ghost margin %s voxels; the ranks read %s"
                   % (field(data, "GhostMarginVoxels"), extents))
-            check(extents is not None and all(e[5] - e[4] + 1 < N for e in extents),
-                  "%s: neither rank read the whole volume (%s)" % (name, extents))
+            check(extents is not None and all((e[1] - e[0] + 1) * (e[3] - e[2] + 1)
+                                              * (e[5] - e[4] + 1) < N ** 3 for e in extents),
+                  "%s: no rank read the whole volume (%s)" % (name, extents))
             check(not message_of(data), "%s: no message (%r)" % (name, message_of(data)))
             check(used == rng, "%s: the built-in estimated range (%s vs %s)" % (name, used, rng))
             # Round 1 grows the seed's piece, round 2 the other piece from what it was told,
@@ -167,24 +180,32 @@ def distributed(server, path, refs):
             check(rounds is not None and rounds[0][0] >= 3,
                   "%s: the growth's rounds are reported, and the network leaves the seed's "
                   "piece and comes back (%s rounds)" % (name, rounds))
+            check(unmatched is not None and unmatched[0][0] == 0,
+                  "%s: every cut end joined (%s unmatched)" % (name, unmatched))
             check(got is not None and topology(got) == topology(reference),
                   "%s: the built-in topology (%s vs %s)"
                   % (name, topology(got) if got else None, topology(reference)))
+            if got is not None and topology(got) != topology(reference):
+                # Where they differ: ends and bifurcations with no counterpart within 4 voxels.
+                for what in ("end_points", "bifurcations"):
+                    print("  %s only distributed: %s; only built in: %s"
+                          % (what, unpaired(got[what], reference[what]),
+                             unpaired(reference[what], got[what])))
             if got is not None:
                 to_ref = farthest_point_voxels(got["points"], reference["points"], 1.0)
                 from_ref = farthest_point_voxels(reference["points"], got["points"], 1.0)
                 print("  farthest point from the built-in run %.3f voxel, of it %.3f voxel"
                       % (to_ref, from_ref))
                 # The seed's rank codes its piece from the seed, as the single run: its points
-                # (owned: below the face) within 0.1 voxel; the other rank codes from roots of
-                # its own: within the root envelope + 0.1 voxel.
+                # (its owned box, SEED_BOX) within 0.1 voxel; the other ranks code from roots
+                # of their own: within the root envelope + 0.1 voxel.
                 pts = got["points"]
                 d = np.array([farthest_point_voxels(pts[i:i + 1], reference["points"], 1.0)
                               for i in range(len(pts))])
-                seed_side = pts[:, 2] < FACE_Z
+                seed_side = np.all((pts >= SEED_BOX[0]) & (pts < SEED_BOX[1]), axis=1)
                 same = (d[seed_side] <= 0.1).mean()
                 print("  seed's rank: %d points, %.1f %% within 0.1 voxel, farthest %.3f voxel; "
-                      "other rank: %d points, %.1f %% within 0.1, farthest %.3f voxel (root "
+                      "other ranks: %d points, %.1f %% within 0.1, farthest %.3f voxel (root "
                       "envelope %.3f voxel)"
                       % (seed_side.sum(), 100.0 * same, d[seed_side].max(), (~seed_side).sum(),
                          100.0 * (d[~seed_side] <= 0.1).mean(), d[~seed_side].max(),
@@ -204,20 +225,42 @@ def distributed(server, path, refs):
         watchdog.cancel()
 
 
-# The piece face: the executive splits the 111 cells at z = 55 (the face layer is the upper
-# piece's); the seed (z = 8) is the first rank's.
-FACE_Z = 55.0
+# The ranks (--ranks; 2 by default).
+PARSER = argparse.ArgumentParser()
+PARSER.add_argument("--ranks", type=int, default=2)
+RANKS = PARSER.parse_args().ranks
 ENVELOPE = [0.0]
 SEED_SIDE_WITHIN = 0.9
+# The seed rank's owned box (lower, upper; world = index, 1 mm voxels): filled by owned_box().
+SEED_BOX = [None, None]
+
+
+def owned_box(seed):
+    """The owned box (half-open on shared faces, open on the volume's own) of the piece holding
+    `seed`, as the executive splits the whole extent (vtkExtentTranslator, block mode, by cells;
+    vtouch::PieceOwnership): 2 ranks split z at 55, 4 ranks y and z at 55."""
+    from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+    translator = vtkExtentTranslator()
+    whole = [0, N - 1] * 3
+    for r in range(RANKS):
+        e = [0] * 6
+        translator.PieceToExtentThreadSafe(r, RANKS, 0, whole, e, translator.BLOCK_MODE, 0)
+        lo = [-np.inf if e[2 * a] == 0 else e[2 * a] for a in range(3)]
+        hi = [np.inf if e[2 * a + 1] == N - 1 else e[2 * a + 1] for a in range(3)]
+        if all(lo[a] <= seed[a] < hi[a] for a in range(3)):
+            return np.array(lo), np.array(hi)
+    raise RuntimeError("no piece holds the seed %s" % seed)
 
 
 def main():
     folder = tempfile.mkdtemp(prefix="vtouch-cs-raw-seeded-")
     try:
         path, refs = builtin_references(folder)
+        SEED_BOX[:] = owned_box(refs["vessel"][0])
+        print("the seed's rank owns %s .. %s" % tuple(SEED_BOX))
         simple.Disconnect()
         run_connected(PLUGIN, check, lambda server: distributed(server, path, refs),
-                      pass_server=True)
+                      ranks=RANKS, pass_server=True)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     CHECK.finish()
