@@ -74,10 +74,11 @@ def measure(path, ranks, radius_mm, seed=None):
                 print("  rank %d read extent %s: %.0f MiB of voxels; its run's peak %.0f MiB"
                       % (r, [int(v) for v in e], b[0] / 2 ** 20, p[0] / 1024.0))
             print("  ghost margin %d voxels; cut ends joined %d, unmatched %d; duplicates removed "
-                  "%s, points dropped %s, bifurcations without branch %s"
+                  "%s, band stubs dropped %s, points dropped %s, bifurcations without branch %s"
                   % (values("GhostMarginVoxels")[0][0], values("StitchCutEndsJoined")[0][0],
                      values("StitchCutEndsUnmatched")[0][0], values("StitchDuplicatesRemoved"),
-                     values("StitchPointsDropped"), values("StitchBifurcationsWithoutBranch")))
+                     values("StitchBandStubsDropped"), values("StitchPointsDropped"),
+                     values("StitchBifurcationsWithoutBranch")))
         simple.Disconnect()
     finally:
         server.stop()
