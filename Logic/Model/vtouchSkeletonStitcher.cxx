@@ -1,6 +1,7 @@
 #include "vtouchSkeletonStitcher.h"
 
 #include "vtouchFragmentPointGrid.h"
+#include "vtouchOverlapBandStubs.h"
 #include "vtouchSkeletonOverlapResolver.h"
 
 #include <algorithm>
@@ -379,7 +380,33 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
   {
     f.push_back(run.fragment);
   }
-  const std::vector<long> partner = matchCutEnds(runs, f, joinTolerance_mm, copyReach_mm, report);
+  std::vector<long> partner = matchCutEnds(runs, f, joinTolerance_mm, copyReach_mm, report);
+  // Band runs that stitch to nothing go (vtouch::OverlapBandStubs); the ends are matched again
+  // without them (the same pairs: a stub has no joined end).
+  const std::vector<char> stub = OverlapBandStubs(ownership, frame).find(f, partner);
+  const int stubs = static_cast<int>(std::count(stub.begin(), stub.end(), 1));
+  if (stubs > 0)
+  {
+    std::vector<OverlapRun> keptRuns;
+    for (std::size_t i = 0; i < runs.size(); ++i)
+    {
+      if (!stub[i])
+      {
+        keptRuns.push_back(std::move(runs[i]));
+      }
+    }
+    runs = std::move(keptRuns);
+    f.clear();
+    for (const OverlapRun& run : runs)
+    {
+      f.push_back(run.fragment);
+    }
+    const int duplicates = report.duplicatesRemoved;
+    report = StitchReport{};
+    report.duplicatesRemoved = duplicates;
+    report.bandStubsDropped = stubs;
+    partner = matchCutEnds(runs, f, joinTolerance_mm, copyReach_mm, report);
+  }
   QSkeleton s;
   std::vector<ChainEnds> chainEnds;
   std::vector<char> used(f.size(), 0);

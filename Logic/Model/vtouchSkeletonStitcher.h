@@ -26,6 +26,9 @@ struct StitchReport
   int bifurcationsWithoutBranch = 0;
   /// Points the pieces sent that were dropped as another piece's copy (the overlap band).
   int duplicatesRemoved = 0;
+  /// Kept runs of the overlap band that stitched to nothing, dropped (vtouch::OverlapBandStubs:
+  /// the owner of their points coded that stretch elsewhere or not at all).
+  int bandStubsDropped = 0;
   /// Points some piece sent that end up farther than the coverage reach from the stitched
   /// skeleton: a stretch no piece kept. Zero by construction; counted so that it is never silent.
   int pointsDropped = 0;
@@ -42,6 +45,8 @@ struct StitchReport
 ///   is kept (vtouch::SkeletonOverlapResolver: the piece owning the copies' midpoint), so a vessel
 ///   crossing a face is cut where it crosses and one lying along a face is kept once; the kept
 ///   runs end in cut ends.
+/// - A run made only of band points whose cut end found no partner is dropped
+///   (vtouch::OverlapBandStubs, StitchReport::bandStubsDropped).
 /// - A cut end joins the nearest cut end within tolerance, preferring the run whose copy won the
 ///   next point (the overlap's own partner), then ends across pieces (preferring the pair whose
 ///   neighbour pieces name each other: the same face, edge or corner), then within one piece.

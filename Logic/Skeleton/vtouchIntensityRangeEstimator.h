@@ -92,14 +92,26 @@ public:
   static std::string backgroundMessage(double intensity);
   static std::string outsideMessage();
 
-private:
+  /// The whole volume's extremes and whether it holds at most two values (fromSeed's one pass
+  /// over the volume). Public for the distributed run (DistributedCandidateRegion), whose ranks
+  /// combine their pieces' scans before the seed's rank estimates the range.
   struct Scan
   {
     double minimum = 0.0, maximum = 0.0;
     bool twoValued = true; ///< at most two distinct values
+    /// The (at most two) distinct values met while twoValued: first, and second when haveSecond.
+    double first = 0.0, second = 0.0;
+    bool haveSecond = false;
   };
   template<typename T>
-  static Scan scan(const VolumeView<T>& volume, const ProgressSpan& progress);
+  static Scan scan(const VolumeView<T>& volume, const ProgressSpan& progress = ProgressSpan());
+  /// fromSeed with the whole volume's scan given (`volume` may be a piece of it that holds the
+  /// seed's neighbourhood: the cube of neighbourhoodHalfSize_voxels and the peak search).
+  template<typename T>
+  static IntensityRange fromSeedScanned(const VolumeView<T>& volume,
+    const std::array<std::int64_t, 3>& seed,
+    const Scan& wholeScan,
+    const Parameters& p = Parameters{});
 };
 
 template<typename T>
@@ -140,6 +152,9 @@ IntensityRangeEstimator::Scan IntensityRangeEstimator::scan(const VolumeView<T>&
   s.minimum = static_cast<double>(lo);
   s.maximum = static_cast<double>(hi);
   s.twoValued = two;
+  s.first = static_cast<double>(first);
+  s.second = static_cast<double>(second);
+  s.haveSecond = haveSecond;
   return s;
 }
 
@@ -149,13 +164,27 @@ IntensityRange IntensityRangeEstimator::fromSeed(const VolumeView<T>& volume,
   const Parameters& p,
   const ProgressSpan& progress)
 {
+  if (volume.size() == 0 || !volume.inside(seed[0], seed[1], seed[2]))
+  {
+    IntensityRange r;
+    r.message = outsideMessage();
+    return r;
+  }
+  return fromSeedScanned(volume, seed, scan(volume, progress), p);
+}
+
+template<typename T>
+IntensityRange IntensityRangeEstimator::fromSeedScanned(const VolumeView<T>& volume,
+  const std::array<std::int64_t, 3>& seed,
+  const Scan& s,
+  const Parameters& p)
+{
   IntensityRange r;
   if (volume.size() == 0 || !volume.inside(seed[0], seed[1], seed[2]))
   {
     r.message = outsideMessage();
     return r;
   }
-  const Scan s = scan(volume, progress);
   r.upper = s.maximum;
   // The brightest voxel near the click.
   double peak = volume.at(seed[0], seed[1], seed[2]);

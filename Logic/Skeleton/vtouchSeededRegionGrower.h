@@ -43,13 +43,25 @@ public:
     const IntensityRange& range,
     const ProgressSpan& progress = ProgressSpan());
 
-private:
+  /// Whether voxel (i, j, k) joins a region that touches it: a strong voxel or a dim ridge
+  /// (the grower's rule, for the distributed growth: DistributedRegionGrowth).
+  template<typename T>
+  static bool joins(const VolumeView<T>& v,
+    const IntensityRange& r,
+    std::int64_t i,
+    std::int64_t j,
+    std::int64_t k)
+  {
+    return strong(v, r, v.linear(i, j, k)) || ridge(v, r, i, j, k);
+  }
   template<typename T>
   static bool strong(const VolumeView<T>& v, const IntensityRange& r, std::uint64_t lin)
   {
     const double x = static_cast<double>(v.voxels[lin]);
     return x >= r.lower && x <= r.upper;
   }
+
+private:
   template<typename T>
   static bool ridge(const VolumeView<T>& v,
     const IntensityRange& r,

@@ -129,9 +129,25 @@ TubeNeckCutter::Result TubeNeckCutter::cut(const SparseVesselMask& region,
     result.mask = std::move(kept);
     return result;
   }
+  result.seedKept = nearestKept(kept, region, depth, *seed, result.seed);
+  result.mask = result.seedKept ? component(kept, result.seed, progress.part(0.8, 1.0))
+                                : SparseVesselMask(region.dims());
+  if (!result.seedKept)
+  {
+    result.mask.finalize();
+  }
+  return result;
+}
+
+bool TubeNeckCutter::nearestKept(const SparseVesselMask& kept,
+  const SparseVesselMask& region,
+  const std::vector<std::uint16_t>& depth,
+  const std::array<std::int64_t, 3>& s,
+  std::array<std::int64_t, 3>& found)
+{
+  const Grid g{ region.dims() };
   // The kept voxel nearest the seed, within the seed's cube of half size depth + 2 (the seed's
   // own voxel may have been trimmed with a bump of wall).
-  const auto& s = *seed;
   int radius = 2;
   if (g.inside(s[0], s[1], s[2]) && region.test(g.lin(s[0], s[1], s[2])))
   {
@@ -147,17 +163,10 @@ TubeNeckCutter::Result TubeNeckCutter::cut(const SparseVesselMask& region,
         if (d2 < best && g.inside(i, j, k) && kept.test(g.lin(i, j, k)))
         {
           best = d2;
-          result.seed = { i, j, k };
+          found = { i, j, k };
         }
       }
-  result.seedKept = best != std::numeric_limits<std::int64_t>::max();
-  result.mask = result.seedKept ? component(kept, result.seed, progress.part(0.8, 1.0))
-                                : SparseVesselMask(region.dims());
-  if (!result.seedKept)
-  {
-    result.mask.finalize();
-  }
-  return result;
+  return best != std::numeric_limits<std::int64_t>::max();
 }
 
 SparseVesselMask TubeNeckCutter::component(const SparseVesselMask& mask,

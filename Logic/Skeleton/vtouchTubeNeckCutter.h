@@ -44,6 +44,14 @@ public:
     const std::array<std::int64_t, 3>* seed,
     const ProgressSpan& progress = ProgressSpan());
 
+  /// The voxel of `kept` nearest `seed` within the seed's cube of half size depth + 2 (`depth`
+  /// indexed by `region.rank()`, as in cut()): true and `found` set, or false when none is.
+  static bool nearestKept(const SparseVesselMask& kept,
+    const SparseVesselMask& region,
+    const std::vector<std::uint16_t>& depth,
+    const std::array<std::int64_t, 3>& seed,
+    std::array<std::int64_t, 3>& found);
+
   /// The 26-connected component of `seed` in `mask` (empty when the seed is not in it).
   /// `progress`: check points every 2^16 voxels (may throw Cancelled), as in cut().
   static SparseVesselMask component(const SparseVesselMask& mask,

@@ -3,7 +3,10 @@
 #include "vtouchCandidateRegionRunner.h"
 #include "vtouchDistributedCenterline.h"
 #include "vtouchDistributedRequest.h"
+#include "vtouchDistributedRawRegion.h"
+#include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchRawSkeletonRefinement.h"
+#include "vtouchSeedComponentSplit.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include "vtkCellArray.h"
@@ -15,8 +18,8 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
-#include "vtkLogger.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -335,16 +338,6 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
   }
   else
   {
-    // A note, not a warning: the result is right (the single run's), only the memory does not
-    // scale, and a warning would open ParaView's Output Messages over the view on every one-click
-    // extraction on a server with DistributedExtraction on. In the server's log.
-    if (pieces > 1 && this->DistributedExtraction && !this->WarnedUndistributed)
-    {
-      this->WarnedUndistributed = true; // once per filter: every update asks again
-      vtkLogF(INFO,
-        "VesselCenterline: the raw seeded mode (AutomaticIntensityRange with UseSeedPoint) is "
-        "not distributed yet; the first rank codes the whole volume.");
-    }
     // The whole volume as one piece: readers that split by piece number read it all.
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
@@ -461,6 +454,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   double seed[3] = { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] };
   std::shared_ptr<const vtouch::SparseVesselMask> mask;
   std::vector<std::pair<std::string, double>> candidateSeconds;
+  bool codeFromSeed = true;
   if (this->AutomaticIntensityRange)
   {
     vtouch::CandidateRegionRequest request;
@@ -475,7 +469,9 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     vtouch::CandidateRegionOutcome region;
     try
     {
-      region = vtouch::runCandidateRegion(input, scalars, request);
+      // Distributed raw seeded mode: the region the ranks computed together (the hook).
+      region = this->DistributedRegion ? *this->DistributedRegion
+                                       : vtouch::runCandidateRegion(input, scalars, request);
     }
     catch (const vtouch::Cancelled&)
     {
@@ -499,7 +495,9 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     if (!region.binary)
     {
       mask = region.mask;
-      if (this->UseSeedPoint)
+      // Distributed: only the seed's rank codes from the seed; the others from their own roots.
+      codeFromSeed = region.seedIndex[0] >= 0;
+      if (this->UseSeedPoint && codeFromSeed)
       {
         // The seed voxel the region grew from (world), for the coder's root.
         double origin[3], spacing[3];
@@ -520,9 +518,12 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   }
   const Settings s{ lower,
     upper,
-    this->UseSeedPoint,
+    this->UseSeedPoint && codeFromSeed,
     { seed[0], seed[1], seed[2] },
-    this->MinimumComponentSize,
+    this->DistributedRegion
+      ? vtouch::DistributedRawRegion::componentSizeVoxels(
+          this->MinimumComponentSize, this->GetGhostMarginVoxels(input->GetSpacing()))
+      : this->MinimumComponentSize,
     this->MinimumBranchLength,
     this->SmoothingWindow,
     this->UseVesselness,
@@ -643,11 +644,8 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
 
 bool vtkVesselTouchCenterlineFilter::Distributed(int piece, int pieces) const
 {
-  // The raw seeded mode needs the range and the grown region across ranks: not yet (departure
-  // in Docs/CLIENT-SERVER.md); it keeps the whole volume on the first rank.
-  const bool seededRaw = this->AutomaticIntensityRange && this->UseSeedPoint;
-  return this->DistributedExtraction && !seededRaw &&
-    vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
+  return this->DistributedExtraction &&
+         vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
 }
 
 int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]) const
@@ -661,7 +659,11 @@ int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]
   rule.minimumBranchLength = this->MinimumBranchLength;
   rule.useVesselness = this->UseVesselness;
   rule.vesselnessSigmaMaximum_mm = this->VesselnessSigmaMaximum;
-  return rule.voxels({ spacing[0], spacing[1], spacing[2] });
+  const int margin = rule.voxels({ spacing[0], spacing[1], spacing[2] });
+  // The raw seeded mode: the seed's rank estimates the range on the seed's neighbourhood.
+  return this->AutomaticIntensityRange && this->UseSeedPoint
+           ? std::max(margin, vtouch::DistributedRawRegion::minimumMarginVoxels())
+           : margin;
 }
 
 int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** inputVector,
@@ -684,8 +686,41 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   hooks.ghostMarginVoxels = [this](const double spacing[3])
   { return this->GetGhostMarginVoxels(spacing); };
   hooks.automaticIntensityRange = this->AutomaticIntensityRange;
+  // The raw seeded mode: the range and the region with the other ranks (collective), then the
+  // piece's own run codes that region (the hook in ExtractVolume); the seed's rank adds the parts
+  // of the network that reach the seed only outside its piece.
+  vtouch::CandidateRegionOutcome region, rest;
+  vtouch::DistributedRawRegion::Report regionReport;
+  if (this->AutomaticIntensityRange && this->UseSeedPoint)
+  {
+    hooks.beforePiece = [&](vtkImageData* input, const vtouch::VoxelExtent6& whole)
+    {
+      vtkMultiProcessController* controller = vtouch::DistributedCenterline::controllerFor(
+        vtkMultiProcessController::GetGlobalController()->GetLocalProcessId(),
+        vtkMultiProcessController::GetGlobalController()->GetNumberOfProcesses());
+      vtouch::CandidateRegionRequest request;
+      request.useSeed = true;
+      std::copy(this->SeedPoint, this->SeedPoint + 3, request.seed_World_mm);
+      vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
+      scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
+      region =
+        vtouch::DistributedRawRegion::run(controller, input, scalars, whole, request, regionReport);
+      rest = vtouch::DistributedRawRegion::splitSeedComponent(region);
+      this->DistributedRegion = &region;
+    };
+    hooks.afterPiece = [&](vtkImageData* input, vtkPolyData* own, vtouch::QSkeleton& skeleton)
+    {
+      this->DistributedRegion = nullptr;
+      vtouch::DistributedRawRegion::addReport(own->GetFieldData(), regionReport);
+      if (rest.ok)
+      {
+        this->AddRestOfRegion(inputVector, input, rest, skeleton);
+      }
+    };
+  }
   const vtouch::DistributedRequest::Outcome outcome =
     vtouch::DistributedRequest::run(inputVector, output, hooks);
+  this->DistributedRegion = nullptr;
   this->ExtractionMessage = outcome.message;
   if (!outcome.firstRank)
   {
@@ -700,6 +735,27 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     vtkErrorMacro(<< outcome.message);
   }
   return 1;
+}
+
+void vtkVesselTouchCenterlineFilter::AddRestOfRegion(vtkInformationVector** inputVector,
+  vtkImageData* input,
+  const vtouch::CandidateRegionOutcome& rest,
+  vtouch::QSkeleton& skeleton)
+{
+  const std::string message = this->ExtractionMessage;
+  vtkNew<vtkPolyData> other;
+  this->QuietErrors = true;
+  this->DistributedRegion = &rest;
+  this->ExtractVolume(inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), other);
+  this->DistributedRegion = nullptr;
+  this->QuietErrors = false;
+  this->ExtractionMessage = message; // the seed's component's run speaks for the piece
+  vtouch::QSkeleton more;
+  std::string error;
+  if (other->GetNumberOfLines() > 0 && vtouch::PolyDataToQSkeleton().convert(other, more, error))
+  {
+    skeleton = vtouch::SeedComponentSplit::appended(skeleton, more);
+  }
 }
 
 bool vtkVesselTouchCenterlineFilter::CancelRequested()

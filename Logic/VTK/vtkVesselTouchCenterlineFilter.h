@@ -29,6 +29,11 @@
 #include <string> // for ExtractionMessage
 #ifndef __VTK_WRAP__
 #include <atomic> // for the cancel flag
+namespace vtouch
+{
+struct CandidateRegionOutcome; // the distributed raw seeded mode's region (RequestDistributed)
+class QSkeleton;
+}
 #endif
 
 class vtkDataArray;
@@ -149,8 +154,8 @@ protected:
   /// In a parallel pipeline (pvserver under MPI) each rank asks for its own piece (the
   /// executive's split) grown by the ghost margin on every face shared with another piece; its
   /// skeleton is clipped to the piece and the pieces are stitched on the first rank
-  /// (RequestDistributed). The raw seeded mode (AutomaticIntensityRange with UseSeedPoint) is not
-  /// distributed yet: the first piece asks for the whole volume and the others for none.
+  /// (RequestDistributed). In the raw seeded mode (AutomaticIntensityRange with UseSeedPoint) the
+  /// ranks estimate the range and grow the region together (vtouch::DistributedRawRegion).
   int RequestUpdateExtent(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
@@ -168,6 +173,14 @@ private:
   /// One rank's part of the distributed extraction: its piece, clipped, gathered and stitched on
   /// the first rank (the others output nothing: the delivery's ReductionFilter appends).
   int RequestDistributed(vtkInformationVector** inputVector, vtkPolyData* output);
+#ifndef __VTK_WRAP__
+  /// The distributed raw seeded mode on the seed's rank: codes `rest` (the parts of the network
+  /// that reach the seed only outside this piece) and appends its paths to `skeleton`.
+  void AddRestOfRegion(vtkInformationVector** inputVector,
+    vtkImageData* input,
+    const vtouch::CandidateRegionOutcome& rest,
+    vtouch::QSkeleton& skeleton);
+#endif
   /// Whether this run is piece `piece` of a distributed extraction over `pieces` ranks.
   bool Distributed(int piece, int pieces) const;
   /// vtkErrorMacro, unless a distributed piece's run defers its errors to the stitched result.
@@ -198,7 +211,6 @@ private:
   double LargestVesselRadius = 0.0;
   int DistributedExtraction = 0;
   bool QuietErrors = false;
-  bool WarnedUndistributed = false;
   std::string LastRunKey;
   vtkSmartPointer<vtkPolyData> PrecomputedOutput;
   std::string PrecomputedKey;
@@ -206,6 +218,9 @@ private:
   bool LastRunCancelled = false;
 #ifndef __VTK_WRAP__
   const std::atomic<bool>* CancelFlag = nullptr;
+  /// Set by RequestDistributed in the raw seeded mode while ExtractVolume runs on the piece: the
+  /// candidate region the ranks computed together, used instead of the piece's own.
+  const vtouch::CandidateRegionOutcome* DistributedRegion = nullptr;
 #endif
 };
 

@@ -224,6 +224,7 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
   addIntValue(fd, "StitchLoopsClosed", result.stitch.loopsClosed);
   addIntValue(fd, "StitchBifurcationsWithoutBranch", result.stitch.bifurcationsWithoutBranch);
   addIntValue(fd, "StitchDuplicatesRemoved", result.stitch.duplicatesRemoved);
+  addIntValue(fd, "StitchBandStubsDropped", result.stitch.bandStubsDropped);
   addIntValue(fd, "StitchPointsDropped", result.stitch.pointsDropped);
   addIntValue(fd, "StitchStrayPointsDropped", result.stitch.strayPointsDropped);
   vtkNew<vtkIntArray> extents;

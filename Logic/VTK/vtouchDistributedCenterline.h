@@ -70,9 +70,9 @@ public:
     double joinTolerance_mm,
     Result& result);
   /// The stitch's and the ranks' reports as field data of the stitched output (the arrays
-  /// DistributedPieces, GhostMarginVoxels, Stitch* (StitchDuplicatesRemoved, StitchPointsDropped,
-  /// StitchStrayPointsDropped among them), Piece*, DistributedGatherSeconds,
-  /// DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank
+  /// DistributedPieces, GhostMarginVoxels, Stitch* (StitchDuplicatesRemoved,
+  /// StitchBandStubsDropped, StitchPointsDropped, StitchStrayPointsDropped among them), Piece*,
+  /// DistributedGatherSeconds, DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank
   /// that found vessels used another intensity range than `rangeUsed` (also
   /// PieceIntensityRangesDiffer).
   static bool addReports(vtkFieldData* fd,

@@ -58,6 +58,14 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   VoxelExtent6 whole{ 0, -1, 0, -1, 0, -1 };
   double largestSpacing = 1.0;
   std::string pieceMessage;
+  if (vtkInformation* in = inputVector[0]->GetInformationObject(0))
+  {
+    in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
+  }
+  if (hooks.beforePiece)
+  {
+    hooks.beforePiece(input, whole); // collective: every rank, with or without a piece
+  }
   if (input)
   {
     const auto extractStart = std::chrono::steady_clock::now();
@@ -71,6 +79,10 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
       pieceMessage = "VesselCenterline: this piece's skeleton is unreadable: " + error;
       skeleton = QSkeleton{};
     }
+    if (hooks.afterPiece)
+    {
+      hooks.afterPiece(input, own, skeleton);
+    }
     report.rangeLower = outcome.rangeUsed[0];
     report.rangeUpper = outcome.rangeUsed[1];
     frame = DistributedCenterline::indexFrame(input);
@@ -80,8 +92,6 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
     {
       report.readerBytes = bytes->GetComponent(0, 0);
     }
-    vtkInformation* in = inputVector[0]->GetInformationObject(0);
-    in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
   }
   // Collective: every rank gets here once per run, whatever its piece gave.
   DistributedCenterline::Result result;
@@ -93,7 +103,12 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
     return outcome; // not the first rank: an empty piece of the output
   }
   outcome.firstRank = true;
-  hooks.fill(result.skeleton, output);
+  if (!result.skeleton.empty())
+  {
+    // (An empty skeleton's zero-tuple topology arrays would make the client lose every field
+    // array on the way, the message with them.)
+    hooks.fill(result.skeleton, output);
+  }
   vtkFieldData* fd = output->GetFieldData();
   // The first rank's run data (range, factor, stage times, ...), then the stitch's.
   vtkFieldData* ownFd = own->GetFieldData();

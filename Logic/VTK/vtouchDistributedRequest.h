@@ -4,6 +4,7 @@
 // vtkVesselTouchCenterlineFilter unchanged in behaviour; not a wrapped class.
 #pragma once
 
+#include "vtouchDistributedCenterline.h" // for VoxelExtent6
 #include "vtouchQSkeleton.h"
 
 #include <functional>
@@ -43,6 +44,12 @@ public:
     /// The ghost margin for a spacing (GhostMarginRule with the filter's parameters), voxels.
     std::function<int(const double spacing[3])> ghostMarginVoxels;
     bool automaticIntensityRange = true;
+    /// Optional, collective: runs on every rank before its piece is coded, with or without an
+    /// input (the raw seeded mode's range and region across the ranks).
+    std::function<void(vtkImageData* input, const VoxelExtent6& whole)> beforePiece;
+    /// Optional: runs after the piece was coded (`own`, its polydata) and read into `skeleton`,
+    /// on ranks with an input; may add to both.
+    std::function<void(vtkImageData* input, vtkPolyData* own, QSkeleton& skeleton)> afterPiece;
   };
   /// What the run says; the filter reports it with its own macros.
   struct Outcome

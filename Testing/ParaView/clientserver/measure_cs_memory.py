@@ -9,6 +9,11 @@ VesselCenterline (thresholded, LargestVesselRadius the phantom's radius). Printe
 extent it read, the voxel bytes its reader read, its VmHWM from /proc after the run (the peak
 resident set of the process, ParaView's libraries included) and the filter's own getrusage peak.
 A measurement, not a test: nothing is asserted.
+
+With ``--raw`` the volume is VesselPhantom's raw angiogram (a random vascular tree with tissue,
+clutter, bias and noise) and VesselCenterline runs in the raw seeded mode (one click: the range
+estimated from a seed on the root vessel, the network grown from it; LargestVesselRadius the
+phantom's largest radius, 4 voxels); the region growth's rounds are printed too.
 """
 
 import argparse
@@ -27,7 +32,7 @@ from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
 
 
-def measure(path, ranks, radius_mm):
+def measure(path, ranks, radius_mm, seed=None):
     server = ParallelServer(ranks=ranks)
     server.start()
     try:
@@ -36,9 +41,12 @@ def measure(path, ranks, radius_mm):
         simple.LoadPlugin(plugin, remote=True)
         simple.LoadPlugin(plugin, remote=False)
         volume = simple.OpenDataFile(path)
-        centerline = simple.VesselCenterline(Input=volume, AutomaticIntensityRange=0,
-                                             LowerThreshold=550.0, LargestVesselRadius=radius_mm,
-                                             DistributedExtraction=1)
+        if seed is None:
+            mode = dict(AutomaticIntensityRange=0, LowerThreshold=550.0)
+        else:
+            mode = dict(AutomaticIntensityRange=1, UseSeedPoint=1, SeedPoint=seed)
+        centerline = simple.VesselCenterline(Input=volume, LargestVesselRadius=radius_mm,
+                                             DistributedExtraction=1, **mode)
         centerline.UpdatePipeline()
         data = sm.Fetch(centerline)
         ranks_pids = rank_processes(server)
@@ -53,6 +61,12 @@ def measure(path, ranks, radius_mm):
               "(MiB): %s" % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(), g["ends"],
                              len(g["bifurcations"]), g["cycles"],
                              ", ".join("%.0f" % h for h in hwm)))
+        if seed is not None:
+            print("  range %s; growth rounds %s, component rounds %s; message %r"
+                  % (values("IntensityRangeUsed"), values("RegionGrowthRounds"),
+                     values("RegionComponentRounds"),
+                     fd.GetAbstractArray("ExtractionMessage").GetValue(0)
+                     if fd.GetAbstractArray("ExtractionMessage") else None))
         if values("PieceInputExtents"):
             for r, (e, b, p) in enumerate(zip(values("PieceInputExtents"),
                                              values("PieceReaderVoxelBytesRead"),
@@ -60,10 +74,11 @@ def measure(path, ranks, radius_mm):
                 print("  rank %d read extent %s: %.0f MiB of voxels; its run's peak %.0f MiB"
                       % (r, [int(v) for v in e], b[0] / 2 ** 20, p[0] / 1024.0))
             print("  ghost margin %d voxels; cut ends joined %d, unmatched %d; duplicates removed "
-                  "%s, points dropped %s, bifurcations without branch %s"
+                  "%s, band stubs dropped %s, points dropped %s, bifurcations without branch %s"
                   % (values("GhostMarginVoxels")[0][0], values("StitchCutEndsJoined")[0][0],
                      values("StitchCutEndsUnmatched")[0][0], values("StitchDuplicatesRemoved"),
-                     values("StitchPointsDropped"), values("StitchBifurcationsWithoutBranch")))
+                     values("StitchBandStubsDropped"), values("StitchPointsDropped"),
+                     values("StitchBifurcationsWithoutBranch")))
         simple.Disconnect()
     finally:
         server.stop()
@@ -73,20 +88,30 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--size", type=int, default=384)
     parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--raw", action="store_true",
+                        help="a raw angiogram phantom and the raw seeded mode")
     args = parser.parse_args()
     folder = tempfile.mkdtemp(prefix="vtouch-cs-memory-")
     try:
         simple.LoadPlugin(os.environ["VESSELTOUCH_PLUGIN"], remote=False, ns=globals())
         n = args.size
-        phantom = VesselPhantom(Dimensions=[n, n, n], RadiusFraction=0.02)  # noqa: F821
-        path = os.path.join(folder, "tree.nrrd")
+        if args.raw:
+            phantom = VesselPhantom(Dimensions=[n, n, n], Shape=8,  # noqa: F821
+                                    OutputScalarType=10)
+            seed = [float(x) for x in sm.Fetch(phantom, idx=1).GetPoint(0)]
+            radius = 4.0  # AngiogramLargestRadius
+        else:
+            phantom = VesselPhantom(Dimensions=[n, n, n], RadiusFraction=0.02)  # noqa: F821
+            seed, radius = None, 0.02 * n
+        path = os.path.join(folder, "phantom.nrrd")
         write_float_nrrd(path, sm.Fetch(phantom))
         simple.Delete(phantom)
         simple.Disconnect()
-        print("tree phantom %d^3 float (%.0f MiB), radius %.1f voxels"
-              % (n, 4.0 * n ** 3 / 2 ** 20, 0.02 * n))
+        print("%s phantom %d^3 float (%.0f MiB), largest radius %.1f voxels%s"
+              % ("raw angiogram" if args.raw else "tree", n, 4.0 * n ** 3 / 2 ** 20, radius,
+                 "; seed %s" % seed if seed else ""))
         for ranks in args.ranks:
-            measure(path, ranks, 0.02 * n)
+            measure(path, ranks, radius, seed)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
 

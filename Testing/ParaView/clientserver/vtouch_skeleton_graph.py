@@ -31,12 +31,13 @@ def graph(polydata, voxel_mm):
     child, parent = _field(polydata, "JunctionChildPath"), _field(polydata, "JunctionParentPath")
     parent_point = _field(polydata, "JunctionParentPoint")
     parents = set(zip(parent, parent_point))
-    ends = 0
+    end_points = []
     for p, chain in enumerate(chains):
         if head[p] < 0 and (p, 0) not in parents:
-            ends += 1
+            end_points.append(chain[0])
         if tail[p] < 0 and (p, len(chain) - 1) not in parents:
-            ends += 1
+            end_points.append(chain[-1])
+    ends = len(end_points)
     # Junction points, merged within half a voxel (two paths attached at one point: one node),
     # and their degree: branches leaving the node (2 per path running through it, 1 per path
     # ending there). A node of degree 2 only joins two paths of one vessel (where a single run's
@@ -67,7 +68,7 @@ def graph(polydata, voxel_mm):
     for c, p in zip(child, parent):
         root[find(c)] = find(p)
     parts = sum(1 for i in range(len(chains)) if find(i) == i)
-    return {"paths": len(chains), "ends": ends, "junctions": len(nodes),
+    return {"paths": len(chains), "ends": ends, "end_points": end_points, "junctions": len(nodes),
             "bifurcations": bifurcations,
             "cycles": len(child) - len(chains) + parts, "points": points, "chains": chains,
             "parents": sorted(parents)}

@@ -1,0 +1,277 @@
+#include "vtouchDistributedRawRegion.h"
+
+#include "vtouchControllerCollectives.h"
+#include "vtouchDistributedCandidateRegion.h"
+#include "vtouchDistributedCenterline.h"
+#include "vtouchSeedComponentSplit.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace vtouch
+{
+namespace
+{
+/// The layout of the ranks' pieces: what each holds (its input's extent, gathered: what it really
+/// read), what each owns (the executive's split, half-open on shared faces).
+PieceLayout layoutOf(RankCollectives& c,
+  vtkImageData* piece,
+  bool usable,
+  const VoxelExtent6& whole)
+{
+  std::vector<double> mine{ 0, -1, 0, -1, 0, -1 };
+  if (usable)
+  {
+    int e[6];
+    piece->GetExtent(e);
+    for (int a = 0; a < 3; ++a)
+    {
+      mine[static_cast<std::size_t>(2 * a)] = e[2 * a] - whole[static_cast<std::size_t>(2 * a)];
+      mine[static_cast<std::size_t>(2 * a + 1)] =
+        e[2 * a + 1] - whole[static_cast<std::size_t>(2 * a)];
+    }
+  }
+  const std::vector<std::vector<double>> held = c.allGather(mine);
+  PieceLayout layout;
+  layout.rank = c.rank();
+  for (int a = 0; a < 3; ++a)
+  {
+    layout.wholeDims[static_cast<std::size_t>(a)] =
+      whole[static_cast<std::size_t>(2 * a + 1)] - whole[static_cast<std::size_t>(2 * a)] + 1;
+  }
+  const std::vector<VoxelExtent6> split = DistributedCenterline::pieceExtents(whole, c.ranks());
+  for (int r = 0; r < c.ranks(); ++r)
+  {
+    VoxelBox h, o;
+    const VoxelExtent6& e = split[static_cast<std::size_t>(r)];
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      const std::vector<double>& hr = held[static_cast<std::size_t>(r)];
+      h.lo[a] = hr.size() == 6 ? static_cast<std::int64_t>(hr[2 * a]) : 0;
+      h.hi[a] = hr.size() == 6 ? static_cast<std::int64_t>(hr[2 * a + 1]) : -1;
+      o.lo[a] = e[2 * a] - whole[2 * a];
+      o.hi[a] = e[2 * a + 1] - whole[2 * a];
+      if (e[2 * a + 1] < whole[2 * a + 1])
+      {
+        o.hi[a] -= 1; // the shared face layer belongs to the upper piece
+      }
+    }
+    layout.held.push_back(h);
+    layout.owned.push_back(o);
+  }
+  return layout;
+}
+
+template<typename T>
+DistributedCandidateRegion::Result extractTyped(vtkImageData* piece,
+  const T* data,
+  const PieceLayout& layout,
+  const std::array<std::int64_t, 3>& seed,
+  RankCollectives& c)
+{
+  VolumeView<T> view;
+  view.voxels = data;
+  if (piece)
+  {
+    int dims[3];
+    piece->GetDimensions(dims);
+    view.dims = { dims[0], dims[1], dims[2] };
+    piece->GetSpacing(view.spacing_mm.data());
+  }
+  VesselCandidateRegion::Settings s;
+  s.automatic = true;
+  s.cutNonTubular = true;
+  s.useSeed = true;
+  s.seed = seed;
+  return DistributedCandidateRegion::extract(view, layout, seed, s, c);
+}
+
+std::string outsideText(vtkImageData* piece,
+  const VoxelExtent6& whole,
+  const double seed_World_mm[3],
+  const std::array<std::int64_t, 3>& seed)
+{
+  double origin[3], spacing[3];
+  piece->GetOrigin(origin);
+  piece->GetSpacing(spacing);
+  double bounds[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = origin[a] + whole[static_cast<std::size_t>(2 * a)] * spacing[a];
+    bounds[2 * a + 1] = origin[a] + whole[static_cast<std::size_t>(2 * a + 1)] * spacing[a];
+  }
+  char text[400];
+  std::snprintf(text,
+    sizeof(text),
+    "The seed (%g, %g, %g mm; voxel %lld, %lld, %lld) is outside the volume (%g..%g, %g..%g, "
+    "%g..%g mm): pick a point on a vessel in the MIP.",
+    seed_World_mm[0],
+    seed_World_mm[1],
+    seed_World_mm[2],
+    static_cast<long long>(seed[0]),
+    static_cast<long long>(seed[1]),
+    static_cast<long long>(seed[2]),
+    bounds[0],
+    bounds[1],
+    bounds[2],
+    bounds[3],
+    bounds[4],
+    bounds[5]);
+  return text;
+}
+} // namespace
+
+void DistributedRawRegion::addReport(vtkFieldData* fd, const Report& report)
+{
+  vtkNew<vtkIntArray> growth;
+  growth->SetName("RegionGrowthRounds");
+  growth->InsertNextValue(report.growthRounds);
+  fd->AddArray(growth);
+  vtkNew<vtkIntArray> component;
+  component->SetName("RegionComponentRounds");
+  component->InsertNextValue(report.componentRounds);
+  fd->AddArray(component);
+  vtkNew<vtkDoubleArray> sent;
+  sent->SetName("RegionVoxelsSent");
+  sent->InsertNextValue(report.sentVoxels);
+  fd->AddArray(sent);
+}
+
+CandidateRegionOutcome DistributedRawRegion::splitSeedComponent(CandidateRegionOutcome& seeded)
+{
+  CandidateRegionOutcome rest = seeded;
+  rest.ok = false;
+  rest.mask = nullptr;
+  rest.seedIndex = { -1, -1, -1 };
+  rest.stageSeconds.clear();
+  if (!seeded.ok || !seeded.mask || seeded.seedIndex[0] < 0)
+  {
+    return rest;
+  }
+  SeedComponentSplit::Parts parts = SeedComponentSplit::split(*seeded.mask, seeded.seedIndex);
+  if (parts.rest.vesselCount() == 0)
+  {
+    return rest; // the seed's component is the whole region
+  }
+  seeded.mask = std::make_shared<const SparseVesselMask>(std::move(parts.seedComponent));
+  rest.mask = std::make_shared<const SparseVesselMask>(std::move(parts.rest));
+  rest.ok = true;
+  return rest;
+}
+
+int DistributedRawRegion::minimumMarginVoxels()
+{
+  return DistributedCandidateRegion::rangeMarginVoxels() + 1;
+}
+
+CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* controller,
+  vtkImageData* piece,
+  vtkDataArray* scalars,
+  const VoxelExtent6& whole,
+  const CandidateRegionRequest& request,
+  Report& report)
+{
+  ControllerCollectives c(controller);
+  CandidateRegionOutcome out;
+  out.automatic = true;
+  const bool usable = piece && scalars && scalars->GetNumberOfComponents() == 1 &&
+                      scalars->GetNumberOfTuples() == piece->GetNumberOfPoints();
+  const PieceLayout layout = layoutOf(c, piece, usable, whole);
+  try
+  {
+    layout.check(); // the same layout, hence the same verdict, on every rank
+  }
+  catch (const std::invalid_argument& e)
+  {
+    out.message = std::string("VesselCenterline (distributed): the ranks' pieces do not cover "
+                              "the volume (") +
+                  e.what() + "); extract on one rank.";
+    return out;
+  }
+  // The seed's voxel in the whole volume: every rank with a piece computes the same; a rank
+  // without one (it owns nothing) takes theirs.
+  std::vector<std::int64_t> mine;
+  if (usable)
+  {
+    const std::array<std::int64_t, 3> index = worldToIndex(piece, request.seed_World_mm);
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      mine.push_back(index[a] - whole[2 * a]);
+    }
+  }
+  std::array<std::int64_t, 3> seed{ -1, -1, -1 };
+  for (const std::vector<std::int64_t>& theirs : c.allGather(mine))
+  {
+    if (theirs.size() == 3)
+    {
+      seed = { theirs[0], theirs[1], theirs[2] };
+      break;
+    }
+  }
+  DistributedCandidateRegion::Result r;
+  void* data = usable ? scalars->GetVoidPointer(0) : nullptr;
+  switch (usable ? scalars->GetDataType() : VTK_FLOAT)
+  {
+    case VTK_FLOAT:
+      r = extractTyped(usable ? piece : nullptr, static_cast<const float*>(data), layout, seed, c);
+      break;
+    case VTK_DOUBLE:
+      r = extractTyped(usable ? piece : nullptr, static_cast<const double*>(data), layout, seed, c);
+      break;
+    case VTK_UNSIGNED_CHAR:
+      r = extractTyped(
+        usable ? piece : nullptr, static_cast<const unsigned char*>(data), layout, seed, c);
+      break;
+    case VTK_SHORT:
+      r = extractTyped(usable ? piece : nullptr, static_cast<const short*>(data), layout, seed, c);
+      break;
+    case VTK_UNSIGNED_SHORT:
+      r = extractTyped(
+        usable ? piece : nullptr, static_cast<const unsigned short*>(data), layout, seed, c);
+      break;
+    default:
+    {
+      // Other types: one float copy of the piece.
+      std::vector<float> copy(static_cast<std::size_t>(scalars->GetNumberOfTuples()));
+      for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+      {
+        copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
+      }
+      r = extractTyped(usable ? piece : nullptr, copy.data(), layout, seed, c);
+    }
+  }
+  report.growthRounds = r.growthRounds;
+  report.componentRounds = r.componentRounds;
+  report.sentVoxels = static_cast<double>(r.reportedVoxels);
+  out.ok = r.region.ok;
+  out.message = r.region.message;
+  if (layout.ownerOf(seed) < 0 && piece)
+  {
+    out.message = outsideText(piece, whole, request.seed_World_mm, seed);
+  }
+  out.lower = r.region.range.lower;
+  out.upper = r.region.range.upper;
+  out.stageSeconds = r.region.stageSeconds;
+  if (r.region.ok)
+  {
+    if (r.region.mask.vesselCount() == 0)
+    {
+      out.ok = false; // normal: the seed's network does not reach this piece
+      out.message = "VesselCenterline (distributed): the seed's network does not reach this piece.";
+      return out;
+    }
+    out.seedIndex = r.seedHere ? r.region.seed : std::array<std::int64_t, 3>{ -1, -1, -1 };
+    out.mask = std::make_shared<const SparseVesselMask>(std::move(r.region.mask));
+  }
+  return out;
+}
+
+} // namespace vtouch

@@ -1,0 +1,269 @@
+"""Client/server integration test (issue 19 item 2, issue 16 item 1): the raw seeded mode (one
+click on a raw angiogram: AutomaticIntensityRange and UseSeedPoint) distributed over a 2-rank
+pvserver against the built-in run on the same volume.
+
+Run as ``pvpython test_cs_distributed_raw_seeded.py [--ranks N]`` (2 by default, the ctest; 4
+splits the volume in y and z, Docs/CLIENT-SERVER.md) with VESSELTOUCH_PLUGIN set, on a display
+(vtouch-xvfb-run). VesselPhantom's raw-angiogram shape (a random vascular tree with partial
+volume, tissue, clutter, bias and noise) at 112^3 is written as raw NRRD and extracted from a
+seed on its root vessel (port 1's first point):
+- built in (one process): the reference;
+- on the N-rank server with DistributedExtraction: the seed's rank estimates the range and every
+  rank grows the region with the others in rounds (vtouch::DistributedRawRegion); the output has
+  the built-in range (IntensityRangeUsed), reports its rounds (RegionGrowthRounds >= 3: the tree
+  crosses the piece face z = 55 and comes back), the built-in topology (vessel ends,
+  bifurcations; vtouch_skeleton_graph; no band stub left unmatched: StitchCutEndsUnmatched 0),
+  the seed's rank's points (its owned box) within 0.1 voxel of the built-in ones (90 % at
+  least: parts that reach the seed only outside its piece are coded from roots of their own)
+  and every point within the coder's root envelope + 0.1 voxel;
+- a seed on the background, on N ranks: the built-in message and an empty output; a watchdog
+  kills the server if a run does not return (a rank waiting for the others forever).
+Exits non-zero on any failure.
+"""
+
+import argparse
+import os
+import shutil
+import sys
+import tempfile
+import threading
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.dirname(HERE)]
+from vtouch_pvserver import run_connected, write_float_nrrd  # noqa: E402
+from vtouch_skeleton_graph import farthest_point_voxels, graph  # noqa: E402
+from vtouch_testing import Check, plugin_path  # noqa: E402
+
+from paraview import servermanager as sm  # noqa: E402
+from paraview import simple  # noqa: E402
+
+PLUGIN = plugin_path()
+CHECK = Check("client/server distributed raw seeded extraction")
+check = CHECK.true
+N = 112
+# The phantom's thickest radius (AngiogramLargestRadius, voxels) as LargestVesselRadius: a ghost
+# margin of 31 voxels, so each rank holds 87 of the 112 planes (the automatic 10 voxels would
+# give 73: both ranks would hold the whole volume).
+RADIUS_VOXELS = 4.0
+PHANTOM = dict(Shape=8, Dimensions=[N, N, N], AngiogramSegments=60, ClutterCount=4, Seed=3,
+               OutputScalarType=10)  # VTK_FLOAT
+# A run that has not returned by then is a hang (the 112^3 run takes seconds).
+WATCHDOG_S = 200.0
+BACKGROUND_SEED = [3.0, 3.0, 3.0]  # a corner of tissue, far from every vessel
+
+
+def topology(g):
+    return {"ends": g["ends"], "bifurcations": len(g["bifurcations"]), "cycles": g["cycles"]}
+
+
+def unpaired(a, b, reach_voxels=4.0):
+    """The points of `a` with no point of `b` within `reach_voxels` (1 mm voxels), rounded."""
+    return [[round(float(v), 1) for v in x] for x in a
+            if not any(np.linalg.norm(np.asarray(x) - np.asarray(y)) <= reach_voxels for y in b)]
+
+
+def field(data, name):
+    a = data.GetFieldData().GetArray(name)
+    return None if a is None else [a.GetTuple(i) for i in range(a.GetNumberOfTuples())]
+
+
+def message_of(data):
+    a = data.GetFieldData().GetAbstractArray("ExtractionMessage")
+    return a.GetValue(0) if a is not None and a.GetNumberOfValues() else ""
+
+
+def builtin_references(folder):
+    simple.LoadPlugin(PLUGIN, remote=False, ns=globals())
+    phantom = VesselPhantom(**PHANTOM)  # noqa: F821
+    path = os.path.join(folder, "raw.nrrd")
+    write_float_nrrd(path, sm.Fetch(phantom))
+    tree = sm.Fetch(phantom, idx=1)
+    seed = [float(x) for x in tree.GetPoint(0)]
+    volume = simple.OpenDataFile(path)
+    refs = {}
+    for name, point in (("vessel", seed), ("background", BACKGROUND_SEED)):
+        centerline = VesselCenterline(Input=volume, AutomaticIntensityRange=1,  # noqa: F821
+                                      UseSeedPoint=1, SeedPoint=point)
+        centerline.UpdatePipeline()
+        data = sm.Fetch(centerline)
+        refs[name] = (point, graph(data, 1.0), field(data, "IntensityRangeUsed"),
+                      message_of(data))
+        simple.Delete(centerline)
+    g = refs["vessel"][1]
+    # The coder's root envelope: how far its points move when only its root moves. The raw
+    # region cannot be re-rooted from the filter's properties (the seed also sets the range), so
+    # it is measured on the thresholded volume at the estimated range: rooted at the seed, then
+    # at the reference's highest point and a third and two thirds along its points.
+    lower, upper = refs["vessel"][2][0][0], refs["vessel"][2][1][0]
+
+    def thresholded(point):
+        c = VesselCenterline(Input=volume, AutomaticIntensityRange=0,  # noqa: F821
+                             LowerThreshold=lower, UpperThreshold=upper, UseSeedPoint=1,
+                             SeedPoint=[float(x) for x in point])
+        c.UpdatePipeline()
+        pts = graph(sm.Fetch(c), 1.0)["points"]
+        simple.Delete(c)
+        return pts
+    base = thresholded(seed)
+    pts = g["points"]
+    for k in (int(np.argmax(pts[:, 2])), len(pts) // 3, 2 * len(pts) // 3):
+        other = thresholded(pts[k])
+        ENVELOPE[0] = max(ENVELOPE[0], farthest_point_voxels(other, base, 1.0),
+                          farthest_point_voxels(base, other, 1.0))
+    print("built in, seed %s: %d paths, %s, range %s; root envelope %.3f voxel"
+          % (seed, g["paths"], topology(g), refs["vessel"][2], ENVELOPE[0]))
+    check(g["paths"] > 0 and not refs["vessel"][3], "the built-in reference has paths")
+    check(refs["background"][3] != "", "the built-in run refuses the background seed (%r)"
+          % refs["background"][3])
+    for proxy in (volume, phantom):
+        simple.Delete(proxy)
+    return path, refs
+
+
+def distributed(server, path, refs):
+    # Every wait has a time-out: a run that does not return ends the server (the client then
+    # fails its call instead of waiting forever).
+    watchdog = threading.Timer(WATCHDOG_S, server.kill)
+    watchdog.start()
+    try:
+        volume = simple.OpenDataFile(path)
+        for name, (point, reference, rng, message) in refs.items():
+            centerline = simple.VesselCenterline(Input=volume, AutomaticIntensityRange=1,
+                                                 UseSeedPoint=1, SeedPoint=point,
+                                                 DistributedExtraction=1,
+                                                 LargestVesselRadius=RADIUS_VOXELS)
+            centerline.UpdatePipeline()
+            data = sm.Fetch(centerline, 0)  # the first rank's: the stitched output and its fields
+            got = graph(data, 1.0) if data.GetNumberOfPoints() else None
+            if name == "background":
+                print("background on %d ranks: %d points, field arrays %s" % (
+                    RANKS, data.GetNumberOfPoints(), [data.GetFieldData().GetArrayName(i) for i in
+                                               range(data.GetFieldData().GetNumberOfArrays())]))
+                check(data.GetNumberOfPoints() == 0, "background: the output is empty")
+                check(message_of(data) == message, "background: the built-in message in the "
+                      "output's field data (%r vs %r)" % (message_of(data), message))
+                pieces = field(data, "DistributedPieces")
+                check(pieces is not None and int(pieces[0][0]) == RANKS,
+                      "background: every rank took part (%s)" % pieces)
+                # And the first rank says it (vtkErrorMacro, in the server's output).
+                check(message in server.output(), "background: the server says the built-in "
+                      "message (%r)" % message)
+                simple.Delete(centerline)
+                continue
+            pieces = field(data, "DistributedPieces")
+            check(pieces is not None and int(pieces[0][0]) == RANKS,
+                  "%s: the extraction ran on every rank (%s)" % (name, pieces))
+            rounds = field(data, "RegionGrowthRounds")
+            used = field(data, "IntensityRangeUsed")
+            unmatched = field(data, "StitchCutEndsUnmatched")
+            print("%s on %d ranks: %d paths, %s; range %s; growth rounds %s, component rounds %s,"
+                  " voxels sent by rank 0 %s; stitch joined %s, unmatched %s, band stubs dropped "
+                  "%s, points dropped %s"
+                  % (name, RANKS, got["paths"] if got else 0, topology(got) if got else None,
+                     used, rounds, field(data, "RegionComponentRounds"),
+                     field(data, "RegionVoxelsSent"), field(data, "StitchCutEndsJoined"),
+                     unmatched, field(data, "StitchBandStubsDropped"),
+                     field(data, "StitchPointsDropped")))
+            extents = field(data, "PieceInputExtents")
+            print("  ghost margin %s voxels; the ranks read %s"
+                  % (field(data, "GhostMarginVoxels"), extents))
+            check(extents is not None and all((e[1] - e[0] + 1) * (e[3] - e[2] + 1)
+                                              * (e[5] - e[4] + 1) < N ** 3 for e in extents),
+                  "%s: no rank read the whole volume (%s)" % (name, extents))
+            check(not message_of(data), "%s: no message (%r)" % (name, message_of(data)))
+            check(used == rng, "%s: the built-in estimated range (%s vs %s)" % (name, used, rng))
+            # Round 1 grows the seed's piece, round 2 the other piece from what it was told,
+            # round 3 the seed's piece again (the network came back into it), a last one finds
+            # nothing new.
+            check(rounds is not None and rounds[0][0] >= 3,
+                  "%s: the growth's rounds are reported, and the network leaves the seed's "
+                  "piece and comes back (%s rounds)" % (name, rounds))
+            check(unmatched is not None and unmatched[0][0] == 0,
+                  "%s: every cut end joined (%s unmatched)" % (name, unmatched))
+            check(got is not None and topology(got) == topology(reference),
+                  "%s: the built-in topology (%s vs %s)"
+                  % (name, topology(got) if got else None, topology(reference)))
+            if got is not None and topology(got) != topology(reference):
+                # Where they differ: ends and bifurcations with no counterpart within 4 voxels.
+                for what in ("end_points", "bifurcations"):
+                    print("  %s only distributed: %s; only built in: %s"
+                          % (what, unpaired(got[what], reference[what]),
+                             unpaired(reference[what], got[what])))
+            if got is not None:
+                to_ref = farthest_point_voxels(got["points"], reference["points"], 1.0)
+                from_ref = farthest_point_voxels(reference["points"], got["points"], 1.0)
+                print("  farthest point from the built-in run %.3f voxel, of it %.3f voxel"
+                      % (to_ref, from_ref))
+                # The seed's rank codes its piece from the seed, as the single run: its points
+                # (its owned box, SEED_BOX) within 0.1 voxel; the other ranks code from roots
+                # of their own: within the root envelope + 0.1 voxel.
+                pts = got["points"]
+                d = np.array([farthest_point_voxels(pts[i:i + 1], reference["points"], 1.0)
+                              for i in range(len(pts))])
+                seed_side = np.all((pts >= SEED_BOX[0]) & (pts < SEED_BOX[1]), axis=1)
+                same = (d[seed_side] <= 0.1).mean()
+                print("  seed's rank: %d points, %.1f %% within 0.1 voxel, farthest %.3f voxel; "
+                      "other ranks: %d points, %.1f %% within 0.1, farthest %.3f voxel (root "
+                      "envelope %.3f voxel)"
+                      % (seed_side.sum(), 100.0 * same, d[seed_side].max(), (~seed_side).sum(),
+                         100.0 * (d[~seed_side] <= 0.1).mean(), d[~seed_side].max(),
+                         ENVELOPE[0]))
+                # On the seed's rank, the seed's component is coded from the seed (0.1 voxel);
+                # parts that reach the seed only outside its piece from roots of their own.
+                check(same >= SEED_SIDE_WITHIN, "%s: %.1f %% of the seed's rank's points within "
+                      "0.1 voxel of the built-in run (at least %.0f %%)"
+                      % (name, 100.0 * same, 100.0 * SEED_SIDE_WITHIN))
+                tolerance = ENVELOPE[0] + 0.1
+                check(max(to_ref, from_ref) <= tolerance,
+                      "%s: every point within the root envelope + 0.1 = %.3f voxel of the "
+                      "built-in run (%.3f, %.3f)" % (name, tolerance, to_ref, from_ref))
+            simple.Delete(centerline)
+        simple.Delete(volume)
+    finally:
+        watchdog.cancel()
+
+
+# The ranks (--ranks; 2 by default).
+PARSER = argparse.ArgumentParser()
+PARSER.add_argument("--ranks", type=int, default=2)
+RANKS = PARSER.parse_args().ranks
+ENVELOPE = [0.0]
+SEED_SIDE_WITHIN = 0.9
+# The seed rank's owned box (lower, upper; world = index, 1 mm voxels): filled by owned_box().
+SEED_BOX = [None, None]
+
+
+def owned_box(seed):
+    """The owned box (half-open on shared faces, open on the volume's own) of the piece holding
+    `seed`, as the executive splits the whole extent (vtkExtentTranslator, block mode, by cells;
+    vtouch::PieceOwnership): 2 ranks split z at 55, 4 ranks y and z at 55."""
+    from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+    translator = vtkExtentTranslator()
+    whole = [0, N - 1] * 3
+    for r in range(RANKS):
+        e = [0] * 6
+        translator.PieceToExtentThreadSafe(r, RANKS, 0, whole, e, translator.BLOCK_MODE, 0)
+        lo = [-np.inf if e[2 * a] == 0 else e[2 * a] for a in range(3)]
+        hi = [np.inf if e[2 * a + 1] == N - 1 else e[2 * a + 1] for a in range(3)]
+        if all(lo[a] <= seed[a] < hi[a] for a in range(3)):
+            return np.array(lo), np.array(hi)
+    raise RuntimeError("no piece holds the seed %s" % seed)
+
+
+def main():
+    folder = tempfile.mkdtemp(prefix="vtouch-cs-raw-seeded-")
+    try:
+        path, refs = builtin_references(folder)
+        SEED_BOX[:] = owned_box(refs["vessel"][0])
+        print("the seed's rank owns %s .. %s" % tuple(SEED_BOX))
+        simple.Disconnect()
+        run_connected(PLUGIN, check, lambda server: distributed(server, path, refs),
+                      ranks=RANKS, pass_server=True)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    CHECK.finish()
+
+
+main()
