@@ -295,17 +295,8 @@ DistributedCandidateRegion::Result DistributedCandidateRegion::extract(const Vol
     const int localDeepest = depth.empty() ? 1 : *std::max_element(depth.begin(), depth.end());
     const int deepest =
       std::min<int>(s.maximumDepth_voxels, static_cast<int>(collectives.maximum(localDeepest)));
-    RestrictedTubularity::Parameters tp;
-    const double maxSpacing =
-      std::max({ piece.spacing_mm[0], piece.spacing_mm[1], piece.spacing_mm[2] });
-    tp.sigmaMaximum_mm = std::max(1.0, static_cast<double>(deepest)) * maxSpacing;
-    const double contrast = r.range.vessel - r.range.background;
-    tp.structureness = contrast > 0.0 ? s.structurenessFraction * contrast
-                                      : s.structurenessFraction * (r.range.upper - r.range.lower);
-    if (!(tp.structureness > 0.0))
-    {
-      tp.structureness = 1.0;
-    }
+    const RestrictedTubularity::Parameters tp =
+      VesselCandidateRegion::tubularityParameters(s, r.range, deepest, piece.spacing_mm);
     const RestrictedTubularity::Result tube =
       RestrictedTubularity::compute(piece, region, depth, tp);
     lap("tubularity");

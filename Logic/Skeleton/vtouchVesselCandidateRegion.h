@@ -18,6 +18,8 @@
 #include "vtouchSeededRegionGrower.h"
 #include "vtouchTubeNeckCutter.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <string>
 #include <utility>
@@ -58,6 +60,28 @@ public:
 
   template<typename T>
   static Result extract(const VolumeView<T>& volume, const Settings& s);
+
+  /// The tubularity's parameters: scales up to the largest expected radius, the region's deepest
+  /// voxel (`deepest_voxels`, at least 1, times the coarsest spacing); Frangi's c as
+  /// `structurenessFraction` of the vessel contrast (of the range's width when the contrast is not
+  /// positive; 1 when neither is). Shared by the single run and the distributed one.
+  static RestrictedTubularity::Parameters tubularityParameters(const Settings& s,
+    const IntensityRange& range,
+    int deepest_voxels,
+    const std::array<double, 3>& spacing_mm)
+  {
+    RestrictedTubularity::Parameters tp;
+    const double maxSpacing = std::max({ spacing_mm[0], spacing_mm[1], spacing_mm[2] });
+    tp.sigmaMaximum_mm = std::max(1.0, static_cast<double>(deepest_voxels)) * maxSpacing;
+    const double contrast = range.vessel - range.background;
+    tp.structureness = contrast > 0.0 ? s.structurenessFraction * contrast
+                                      : s.structurenessFraction * (range.upper - range.lower);
+    if (!(tp.structureness > 0.0))
+    {
+      tp.structureness = 1.0;
+    }
+    return tp;
+  }
 };
 
 template<typename T>
@@ -149,18 +173,8 @@ VesselCandidateRegion::Result VesselCandidateRegion::extract(const VolumeView<T>
   lap(r, "depth");
   const int deepest = std::min<int>(
     s.maximumDepth_voxels, depth.empty() ? 1 : *std::max_element(depth.begin(), depth.end()));
-  RestrictedTubularity::Parameters tp;
-  const double maxSpacing =
-    std::max({ volume.spacing_mm[0], volume.spacing_mm[1], volume.spacing_mm[2] });
-  // Scales up to the largest expected radius: the region's deepest voxel.
-  tp.sigmaMaximum_mm = std::max(1.0, static_cast<double>(deepest)) * maxSpacing;
-  const double contrast = r.range.vessel - r.range.background;
-  tp.structureness = contrast > 0.0 ? s.structurenessFraction * contrast
-                                    : s.structurenessFraction * (r.range.upper - r.range.lower);
-  if (!(tp.structureness > 0.0))
-  {
-    tp.structureness = 1.0;
-  }
+  const RestrictedTubularity::Parameters tp =
+    tubularityParameters(s, r.range, deepest, volume.spacing_mm);
   const RestrictedTubularity::Result tube =
     RestrictedTubularity::compute(volume, region, depth, tp, tubularityProgress);
   lap(r, "tubularity");

@@ -50,6 +50,32 @@ struct CandidateRegionOutcome
   std::vector<std::pair<std::string, double>> stageSeconds;
 };
 
+/// The message for a seed outside the volume: where the seed and the volume are (the click or the
+/// Python seed missed it), and what to do. `bounds_mm`: the whole volume's, x0 x1 y0 y1 z0 z1.
+inline std::string seedOutsideVolumeMessage(const double seed_World_mm[3],
+  const std::array<std::int64_t, 3>& seed,
+  const double bounds_mm[6])
+{
+  char text[400];
+  std::snprintf(text,
+    sizeof(text),
+    "The seed (%g, %g, %g mm; voxel %lld, %lld, %lld) is outside the volume (%g..%g, %g..%g, "
+    "%g..%g mm): pick a point on a vessel in the MIP.",
+    seed_World_mm[0],
+    seed_World_mm[1],
+    seed_World_mm[2],
+    static_cast<long long>(seed[0]),
+    static_cast<long long>(seed[1]),
+    static_cast<long long>(seed[2]),
+    bounds_mm[0],
+    bounds_mm[1],
+    bounds_mm[2],
+    bounds_mm[3],
+    bounds_mm[4],
+    bounds_mm[5]);
+  return text;
+}
+
 /// Voxel index (origin + direction * (index * spacing), nearest) of a world point, as ITK
 /// imports the image (extent ignored, as the voxel coder's import does).
 inline std::array<std::int64_t, 3> worldToIndex(vtkImageData* image, const double p[3])
@@ -102,27 +128,9 @@ CandidateRegionOutcome runCandidateRegion(vtkImageData* image,
   VesselCandidateRegion::Result r = VesselCandidateRegion::extract(view, s);
   if (request.useSeed && !view.inside(s.seed[0], s.seed[1], s.seed[2]))
   {
-    // Say where the seed and the volume are: the click or the Python seed missed the volume.
     double bounds[6];
     image->GetBounds(bounds);
-    char text[400];
-    std::snprintf(text,
-      sizeof(text),
-      "The seed (%g, %g, %g mm; voxel %lld, %lld, %lld) is outside the volume (%g..%g, %g..%g, "
-      "%g..%g mm): pick a point on a vessel in the MIP.",
-      request.seed_World_mm[0],
-      request.seed_World_mm[1],
-      request.seed_World_mm[2],
-      static_cast<long long>(s.seed[0]),
-      static_cast<long long>(s.seed[1]),
-      static_cast<long long>(s.seed[2]),
-      bounds[0],
-      bounds[1],
-      bounds[2],
-      bounds[3],
-      bounds[4],
-      bounds[5]);
-    r.message = text;
+    r.message = seedOutsideVolumeMessage(request.seed_World_mm, s.seed, bounds);
   }
   CandidateRegionOutcome out;
   out.ok = r.ok;

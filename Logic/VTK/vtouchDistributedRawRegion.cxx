@@ -1,5 +1,6 @@
 #include "vtouchDistributedRawRegion.h"
 
+#include "vtouchCandidateRegionRunner.h"
 #include "vtouchControllerCollectives.h"
 #include "vtouchDistributedCandidateRegion.h"
 #include "vtouchDistributedCenterline.h"
@@ -13,7 +14,6 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 
-#include <cstdio>
 #include <stdexcept>
 
 namespace vtouch
@@ -108,24 +108,7 @@ std::string outsideText(vtkImageData* piece,
     bounds[2 * a] = origin[a] + whole[static_cast<std::size_t>(2 * a)] * spacing[a];
     bounds[2 * a + 1] = origin[a] + whole[static_cast<std::size_t>(2 * a + 1)] * spacing[a];
   }
-  char text[400];
-  std::snprintf(text,
-    sizeof(text),
-    "The seed (%g, %g, %g mm; voxel %lld, %lld, %lld) is outside the volume (%g..%g, %g..%g, "
-    "%g..%g mm): pick a point on a vessel in the MIP.",
-    seed_World_mm[0],
-    seed_World_mm[1],
-    seed_World_mm[2],
-    static_cast<long long>(seed[0]),
-    static_cast<long long>(seed[1]),
-    static_cast<long long>(seed[2]),
-    bounds[0],
-    bounds[1],
-    bounds[2],
-    bounds[3],
-    bounds[4],
-    bounds[5]);
-  return text;
+  return seedOutsideVolumeMessage(seed_World_mm, seed, bounds);
 }
 } // namespace
 

@@ -36,10 +36,7 @@ def measure(path, ranks, radius_mm, seed=None):
     server = ParallelServer(ranks=ranks)
     server.start()
     try:
-        simple.Connect("127.0.0.1", server.port)
-        plugin = os.environ["VESSELTOUCH_PLUGIN"]
-        simple.LoadPlugin(plugin, remote=True)
-        simple.LoadPlugin(plugin, remote=False)
+        server.connect(os.environ["VESSELTOUCH_PLUGIN"])
         volume = simple.OpenDataFile(path)
         if seed is None:
             mode = dict(AutomaticIntensityRange=0, LowerThreshold=550.0)

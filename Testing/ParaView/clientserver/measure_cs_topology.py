@@ -29,10 +29,7 @@ def measure(volume, ranks, lower, upper):
     server = ParallelServer(ranks=ranks)
     server.start()
     try:
-        simple.Connect("127.0.0.1", server.port)
-        plugin = os.environ["VESSELTOUCH_PLUGIN"]
-        simple.LoadPlugin(plugin, remote=True)
-        simple.LoadPlugin(plugin, remote=False)
+        server.connect(os.environ["VESSELTOUCH_PLUGIN"])
         reader = simple.OpenDataFile(volume)
         centerline = simple.VesselCenterline(Input=reader, AutomaticIntensityRange=0,
                                              LowerThreshold=lower, UpperThreshold=upper,

@@ -136,6 +136,15 @@ class ParallelServer:
             self._reader.join(timeout=5)
         return self.process.returncode
 
+    def connect(self, plugin, remote_plugin=True):
+        """Connects this pvpython to the started server and loads `plugin` on both sides (the
+        same file; only in the client when `remote_plugin` is False)."""
+        from paraview import simple
+        simple.Connect("127.0.0.1", self.port)
+        if remote_plugin:
+            simple.LoadPlugin(plugin, remote=True)
+        simple.LoadPlugin(plugin, remote=False)
+
     def __enter__(self):
         return self.start()
 
@@ -205,10 +214,7 @@ def run_connected(plugin, check, body, ranks=2, remote_plugin=True, pass_server=
     try:
         server.start()
         port = server.port
-        simple.Connect("127.0.0.1", port)
-        if remote_plugin:
-            simple.LoadPlugin(plugin, remote=True)
-        simple.LoadPlugin(plugin, remote=False)
+        server.connect(plugin, remote_plugin)
         partitions = sm.ActiveConnection.GetNumberOfDataPartitions()
         check(partitions == ranks, "the server has %d ranks, not %d" % (partitions, ranks))
         body(server) if pass_server else body()
