@@ -211,14 +211,28 @@ void retracePath(QSkeleton& skeleton,
     return sec[static_cast<std::size_t>(i)].clean || (i == 0 && path.head.junction >= 0) ||
            (i == n - 1 && path.tail.junction >= 0);
   };
+  // Wider than the tube it left (radius r): the cut's blob criterion (below) on one section,
+  // s > r + max(1 voxel, r / 2), and as wide as clutter (s >= clutterMinimumWidth: not a thin
+  // vessel's noisy wall). Clutter only widens the section (a ball or blob swallowing the path
+  // lengthens every ray); a junction between two vessels lengthens the rays toward the other
+  // vessel only, and the median stays about the tube's radius (the Tree phantom: s 5.9-6.0
+  // beside a tube of r 5.9; the 384^3 phantom's blob: s 2.9-4.9 beside r 1.1). Compared with
+  // the tube's own radius, not in absolute voxels: a thick vessel's sections are all wider than
+  // clutterMinimumWidth. (Project rule, issue 16 item 5.)
+  const auto widerThanTube = [&](double sv, double r)
+  {
+    return sv >= s.clutterMinimumWidth_voxels &&
+           sv > r + std::max(s.radiusExcess_voxels, s.radiusExcessFraction * r);
+  };
   // A lone clean point amid clutter: the judged points on both sides of it are not clean, in the
   // range (s > 0: not a thin vessel's section whose centre fell on a noise hole, which says the
-  // point is on that vessel) and one of them is as wide as clutter (s >= clutterMinimumWidth:
-  // not a thin vessel's noisy wall). It
-  // is the coder's centre pulled into a contact whose section happens to be round and narrow
+  // point is on that vessel) and one of them is wider than the tube r the track comes from
+  // (widerThanTube; a thick vessel's own sections beside a lone clean one, where the vessel
+  // nears itself, are not: the Winding line phantom, s 6.5-6.9 beside r 7.1, was cut in two).
+  // It is the coder's centre pulled into a contact whose section happens to be round and narrow
   // there, off the tube: a track from the tube before it cannot meet it, so it does not end a
   // stretch that such a track enters (below), as a lone round section is no vessel to follow.
-  const auto lone = [&](int i)
+  const auto lone = [&](int i, double r)
   {
     if (i < 1 || i + 1 >= n || !sec[static_cast<std::size_t>(i)].clean)
     {
@@ -227,21 +241,37 @@ void retracePath(QSkeleton& skeleton,
     const PointSection& before = sec[static_cast<std::size_t>(i - 1)];
     const PointSection& after = sec[static_cast<std::size_t>(i + 1)];
     return !before.zone && !after.zone && !before.clean && !after.clean && before.s > 0.0 &&
-           after.s > 0.0 && std::max(before.s, after.s) >= s.clutterMinimumWidth_voxels;
+           after.s > 0.0 && (widerThanTube(before.s, r) || widerThanTube(after.s, r));
   };
   // The point of this path where another vessel joins it (both have clean runs: the coder's
   // junction between two vessels) that the tube's track from `from` (toward `sign`) came within
   // reach of, the farthest along the track: (point, centre index), or (-1, 0). A track that meets
-  // no clean point may still reach the junction where the vessel goes on as another path.
+  // no clean point may still reach the junction where the vessel goes on as another path, when
+  // the coder's path ran onto clutter before it: a judged section between `from` and the
+  // junction is wider than the tube (widerThanTube). Where none is, the stretch holds only the
+  // junction's own elongated sections (a clean junction of thick vessels: the Tree phantom's
+  // path 2 was moved 1.7 voxels) and is left to the track from the other side, as before.
   const auto junctionReached = [&](const Track& tr, int from, int sign, double r)
   {
     const double reach = std::max(s.targetReach_voxels, 0.5 * r) * voxel;
     std::pair<int, std::size_t> best{ -1, 0 };
+    std::vector<bool> ranOntoClutter; // per junction point of the path
+    for (const int q : realJunctionPoints[pi])
+    {
+      bool wide = false;
+      for (int i = std::min(from, q) + 1; i < std::max(from, q); ++i)
+      {
+        const PointSection& ps = sec[static_cast<std::size_t>(i)];
+        wide = wide || (!ps.zone && widerThanTube(ps.s, r));
+      }
+      ranOntoClutter.push_back((q - from) * sign >= 2 && wide);
+    }
     for (std::size_t c = 1; c < tr.centres.size(); ++c)
     {
-      for (const int q : realJunctionPoints[pi])
+      for (std::size_t jq = 0; jq < realJunctionPoints[pi].size(); ++jq)
       {
-        if ((q - from) * sign >= 2 &&
+        const int q = realJunctionPoints[pi][jq];
+        if (ranOntoClutter[jq] &&
             (tr.centres[c] - path.points[static_cast<std::size_t>(q)].position_World_mm).norm() <=
               reach)
         {
@@ -326,8 +356,13 @@ void retracePath(QSkeleton& skeleton,
       ++k;
     }
     // Across lone clean points, when a track from the tube before the stretch enters it.
-    while (judgedNotClean && j >= 1 && k < n && lone(k) && std::isfinite(tubeRadius(j - 1, k)))
+    while (judgedNotClean && j >= 1 && k < n)
     {
+      const double r = tubeRadius(j - 1, k);
+      if (!std::isfinite(r) || !lone(k, r))
+      {
+        break;
+      }
       ++k;
       while (k < n && !anchor(k))
       {
