@@ -363,6 +363,7 @@ void retracePath(QSkeleton& skeleton,
       {
         break;
       }
+      ++result.loneSectionsCrossed;
       ++k;
       while (k < n && !anchor(k))
       {
@@ -431,6 +432,7 @@ void retracePath(QSkeleton& skeleton,
             path.points[static_cast<std::size_t>(a)].radius_mm,
             path.points[static_cast<std::size_t>(q)].radius_mm });
           done = true;
+          ++result.stretchesEndedAtJunction;
         }
       }
       rBackward = done ? 0.0 : tubeRadius(b, a);
@@ -477,6 +479,7 @@ void retracePath(QSkeleton& skeleton,
             path.points[static_cast<std::size_t>(q)].radius_mm,
             path.points[static_cast<std::size_t>(b)].radius_mm });
           done = true;
+          ++result.stretchesEndedAtJunction;
         }
       }
       result.stretchesTracked += done ? 1 : 0;

@@ -116,7 +116,9 @@ public:
     int stretchesTracked = 0; ///< replaced by the tube's own track
     int junctionsMoved = 0;   ///< paths joined inside a re-traced stretch, moved onto the track
     int stretchesCut = 0;     ///< clutter stretches removed (a path split, or its free end trimmed)
-    int junctionsDetached = 0; ///< paths joined inside a removed stretch (their end is free now)
+    int junctionsDetached = 0;   ///< paths joined inside a removed stretch (their end is free now)
+    int loneSectionsCrossed = 0; ///< lone clean sections amid clutter a stretch ran on across
+    int stretchesEndedAtJunction = 0; ///< re-traced up to a junction (no clean point was met)
     std::size_t pointsJudged = 0;
     std::size_t pointsNotClean = 0;
   };

@@ -161,8 +161,9 @@ double coverage(const QSkeleton& s, const Vec3& a, const Vec3& b, double margin,
 void print(const char* what, const QSkeleton& s, const TubeSectionTracker::Result& r)
 {
   std::cout << what << ": stretches " << r.stretches << ", re-traced " << r.stretchesTracked
-            << ", cut " << r.stretchesCut << ", junctions moved " << r.junctionsMoved
-            << ", detached " << r.junctionsDetached << "\n";
+            << ", ended at a junction " << r.stretchesEndedAtJunction << ", lone sections crossed "
+            << r.loneSectionsCrossed << ", cut " << r.stretchesCut << ", junctions moved "
+            << r.junctionsMoved << ", detached " << r.junctionsDetached << "\n";
   for (std::size_t pi = 0; pi < s.paths.size(); ++pi)
   {
     std::cout << "  path " << pi << ":";
@@ -217,6 +218,9 @@ TEST(TubeSectionTracker, TracksPastALoneCleanSectionInABallToTheJunctionAndKeeps
   const auto r = TubeSectionTracker::track(s, SectionForeground::of(mask), kUnit);
   print("lone clean section in a ball before a junction", s, r);
   EXPECT_EQ(s.validate(), "");
+  // Both rules fired: the ball's sections are wider than the vessel (s > r + max(1, r / 2)).
+  EXPECT_GE(r.loneSectionsCrossed, 1);
+  EXPECT_EQ(r.stretchesEndedAtJunction, 1);
   EXPECT_GE(offBefore, 3);
   // Every point within 2 voxels of an axis (the vessel's radius + 0.5: none on the ball).
   EXPECT_EQ(pointsOff(s, { { a, b }, { fork, tip } }, 2.0), 0);
