@@ -44,12 +44,18 @@
 //    from the clean side replaces the stretch as far as the tube goes (at most the stretch's
 //    length + 1 voxel); a path joined to that stretch farther than 2 (r + 1) voxels from the
 //    track joined the clutter beyond the tube's end and is detached, not moved onto the track.
-//    A lone clean point (its judged neighbours both not clean with s > 0, one with s >= 1.5
-//    voxels: the coder's centre pulled into a contact) does not end a stretch that a track from
-//    the tube before it can enter. A track that meets no clean point but comes within reach of
-//    a point where another vessel joins the path (both with clean runs) replaces the stretch up
-//    to that junction (the vessel goes on as the other path; the path turned onto a branch).
-//    (Issue 16 item 5; project rules, Docs/CENTERLINES.md step 4, "Past clutter".)
+//    Clutter widens a section: s wider than the tube r the track comes from, s > r + max(1 voxel,
+//    r / 2) and s >= 1.5 voxels (the cut's blob criterion, relative to the tube: a thick
+//    vessel's own sections are all wider than 1.5 voxels). A lone clean point (its judged
+//    neighbours both not clean with s > 0, one wider than the tube: the coder's centre pulled
+//    into a contact) does not end a stretch that a track from the tube before it can enter. A
+//    track that meets no clean point but comes within reach of a point where another vessel
+//    joins the path (both with clean runs), with a section wider than the tube between its
+//    start and that junction (the path ran onto clutter; a clean junction's sections are only
+//    elongated), replaces the stretch up to that junction (the vessel goes on as the other
+//    path; the path turned onto a branch). Counted in Result::loneSectionsCrossed and
+//    Result::stretchesEndedAtJunction. (Issue 16 item 5; project rules, Docs/CENTERLINES.md
+//    step 4, "Past clutter".)
 // 4. Cutting. A stretch that no track crossed is clutter when it has >= 3 points, its sections
 //    are wide (median s >= 1.5 voxels: not a thin vessel's noisy wall), mostly not round (a
 //    plate's band) or wider than the tube it left (s > r + max(1, r / 2): a blob), longer than
