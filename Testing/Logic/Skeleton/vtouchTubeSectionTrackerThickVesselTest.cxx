@@ -1,7 +1,8 @@
-// TubeSectionTracker at a clean junction of thick vessels (issue 16 item 5): the rules that let
-// the tube's track cross a lone clean section and end at a junction fire only where the track
-// runs into clutter (a section wider than the tube), not where a junction's own sections are
-// elongated by the other vessel's lumen.
+// TubeSectionTracker on clean thick vessels (issue 16 item 5): the rules that let the tube's
+// track cross a lone clean section and end at a junction fire only where the track runs into
+// clutter (a section wider than the tube), not where a junction's own sections are elongated by
+// the other vessel's lumen or other vessels touch the tube (h16d's absolute s >= 1.5 voxels
+// fired on every thick vessel: the Tree phantom's junction moved, the Winding line was cut).
 #include "vtouchTubeSectionTracker.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
@@ -144,5 +145,54 @@ TEST(TubeSectionTracker, LeavesACleanJunctionOfThickVesselsToTheTrackFromTheOthe
         { { fork, on }, 0.9 * rootRadius },
         { { fork, branch }, branchRadius } },
       0.0));
+  }
+}
+
+TEST(TubeSectionTracker, KeepsAThickVesselTouchedByTwoVesselsWholeAcrossALoneCleanSection)
+{
+  // A vessel of radius r along x, touched from both sides by two vessels of its calibre over
+  // `len` voxels, then, after a gap of 2 voxels where its section is round again (one lone clean
+  // section), over `len` voxels more: as where the Winding line phantom nears itself. The
+  // contact sections are not round but no wider than the tube (median ray about r), so the
+  // lone clean section ends the first stretch, and neither stretch is long enough to be cut
+  // (longer than its width + 2 voxels). With h16d's absolute test the two stretches were one
+  // across the lone section and were cut: the vessel fell in two (paths 1 -> 2).
+  for (const auto& [r, len] :
+    { std::pair{ 4.0, 4.0 }, std::pair{ 5.0, 5.0 }, std::pair{ 7.0, 8.0 } })
+  {
+    const Dims dims{ 96, 64, 64 };
+    const Vec3 a{ 4, 32, 32 }, b{ 92, 32, 32 };
+    const double d = 2.0 * r - 0.5; // the touching vessels' axes (0.5 voxel overlap)
+    const double x0 = 40.0, x1 = x0 + len, x2 = x1 + 2.0, x3 = x2 + len;
+    const SparseVesselMask mask = makeMask(dims,
+      [&](const Vec3& p)
+      {
+        const bool alongContact = (p.x >= x0 && p.x <= x1) || (p.x >= x2 && p.x <= x3);
+        return segmentDistance(p, a, b) <= r ||
+               (alongContact && std::hypot(p.y - (32 + d), p.z - 32) <= r) ||
+               (alongContact && std::hypot(p.y - (32 - d), p.z - 32) <= r);
+      });
+    QSkeleton s;
+    SkeletonPath path;
+    for (int x = 6; x <= 90; ++x)
+    {
+      SkeletonPoint q;
+      q.position_World_mm = Vec3{ double(x), 32, 32 };
+      q.tangent_World = Vec3{ 1, 0, 0 };
+      q.radius_mm = r;
+      path.points.push_back(q);
+    }
+    path.points.front().label = path.points.back().label = PointLabel::EndPoint;
+    s.paths = { path };
+    const auto result = TubeSectionTracker::track(s, SectionForeground::of(mask), kUnit);
+    std::cout << "thick vessel touched on both sides, radius " << r << ": paths " << s.paths.size()
+              << ", stretches " << result.stretches << ", lone sections crossed "
+              << result.loneSectionsCrossed << ", cut " << result.stretchesCut << "\n";
+    EXPECT_EQ(s.validate(), "");
+    EXPECT_EQ(result.stretches, 2); // the two contacts, judged not clean
+    EXPECT_EQ(result.loneSectionsCrossed, 0);
+    EXPECT_EQ(result.stretchesCut, 0);
+    ASSERT_EQ(s.paths.size(), 1u);
+    EXPECT_TRUE(insideTheTubes(s, { { { a, b }, 0.5 } }, 0.0)); // on the vessel's axis
   }
 }
