@@ -26,6 +26,10 @@ struct Plan
   bool remove = false; ///< clutter: the points go (the path is split there or its end trimmed)
   std::vector<Vec3> before{}; ///< remove: the tube's track kept before the cut
   std::vector<Vec3> after{};  ///< remove: the tube's track kept after the cut
+  /// A free end re-traced as far as the tube goes (+1 the tail, -1 the head; 0 not): paths
+  /// joined to the stretch farther than `joinReach_mm` from the track are detached.
+  int freeEnd = 0;
+  double joinReach_mm = 0.0;
 };
 
 struct PointSection
@@ -207,6 +211,76 @@ void retracePath(QSkeleton& skeleton,
     return sec[static_cast<std::size_t>(i)].clean || (i == 0 && path.head.junction >= 0) ||
            (i == n - 1 && path.tail.junction >= 0);
   };
+  // Wider than the tube it left (radius r): the cut's blob criterion (below) on one section,
+  // s > r + max(1 voxel, r / 2), and as wide as clutter (s >= clutterMinimumWidth: not a thin
+  // vessel's noisy wall). Clutter only widens the section (a ball or blob swallowing the path
+  // lengthens every ray); a junction between two vessels lengthens the rays toward the other
+  // vessel only, and the median stays about the tube's radius (the Tree phantom: s 5.9-6.0
+  // beside a tube of r 5.9; the 384^3 phantom's blob: s 2.9-4.9 beside r 1.1). Compared with
+  // the tube's own radius, not in absolute voxels: a thick vessel's sections are all wider than
+  // clutterMinimumWidth. (Project rule, issue 16 item 5.)
+  const auto widerThanTube = [&](double sv, double r)
+  {
+    return sv >= s.clutterMinimumWidth_voxels &&
+           sv > r + std::max(s.radiusExcess_voxels, s.radiusExcessFraction * r);
+  };
+  // A lone clean point amid clutter: the judged points on both sides of it are not clean, in the
+  // range (s > 0: not a thin vessel's section whose centre fell on a noise hole, which says the
+  // point is on that vessel) and one of them is wider than the tube r the track comes from
+  // (widerThanTube; a thick vessel's own sections beside a lone clean one, where the vessel
+  // nears itself, are not: the Winding line phantom, s 6.5-6.9 beside r 7.1, was cut in two).
+  // It is the coder's centre pulled into a contact whose section happens to be round and narrow
+  // there, off the tube: a track from the tube before it cannot meet it, so it does not end a
+  // stretch that such a track enters (below), as a lone round section is no vessel to follow.
+  const auto lone = [&](int i, double r)
+  {
+    if (i < 1 || i + 1 >= n || !sec[static_cast<std::size_t>(i)].clean)
+    {
+      return false;
+    }
+    const PointSection& before = sec[static_cast<std::size_t>(i - 1)];
+    const PointSection& after = sec[static_cast<std::size_t>(i + 1)];
+    return !before.zone && !after.zone && !before.clean && !after.clean && before.s > 0.0 &&
+           after.s > 0.0 && (widerThanTube(before.s, r) || widerThanTube(after.s, r));
+  };
+  // The point of this path where another vessel joins it (both have clean runs: the coder's
+  // junction between two vessels) that the tube's track from `from` (toward `sign`) came within
+  // reach of, the farthest along the track: (point, centre index), or (-1, 0). A track that meets
+  // no clean point may still reach the junction where the vessel goes on as another path, when
+  // the coder's path ran onto clutter before it: a judged section between `from` and the
+  // junction is wider than the tube (widerThanTube). Where none is, the stretch holds only the
+  // junction's own elongated sections (a clean junction of thick vessels: the Tree phantom's
+  // path 2 was moved 1.7 voxels) and is left to the track from the other side, as before.
+  const auto junctionReached = [&](const Track& tr, int from, int sign, double r)
+  {
+    const double reach = std::max(s.targetReach_voxels, 0.5 * r) * voxel;
+    std::pair<int, std::size_t> best{ -1, 0 };
+    std::vector<bool> ranOntoClutter; // per junction point of the path
+    for (const int q : realJunctionPoints[pi])
+    {
+      bool wide = false;
+      for (int i = std::min(from, q) + 1; i < std::max(from, q); ++i)
+      {
+        const PointSection& ps = sec[static_cast<std::size_t>(i)];
+        wide = wide || (!ps.zone && widerThanTube(ps.s, r));
+      }
+      ranOntoClutter.push_back((q - from) * sign >= 2 && wide);
+    }
+    for (std::size_t c = 1; c < tr.centres.size(); ++c)
+    {
+      for (std::size_t jq = 0; jq < realJunctionPoints[pi].size(); ++jq)
+      {
+        const int q = realJunctionPoints[pi][jq];
+        if (ranOntoClutter[jq] &&
+            (tr.centres[c] - path.points[static_cast<std::size_t>(q)].position_World_mm).norm() <=
+              reach)
+        {
+          best = { q, c };
+        }
+      }
+    }
+    return best;
+  };
   // The tube's radius for a stretch: median s of the clean points on one side, within the
   // window, of the anchor's vessel (of any vessel when that has none); NaN (no track) when
   // fewer than 3 are clean there: a lone round section amid clutter is no vessel to follow.
@@ -281,6 +355,21 @@ void retracePath(QSkeleton& skeleton,
       judgedNotClean = judgedNotClean || !sec[static_cast<std::size_t>(k)].zone;
       ++k;
     }
+    // Across lone clean points, when a track from the tube before the stretch enters it.
+    while (judgedNotClean && j >= 1 && k < n)
+    {
+      const double r = tubeRadius(j - 1, k);
+      if (!std::isfinite(r) || !lone(k, r))
+      {
+        break;
+      }
+      ++result.loneSectionsCrossed;
+      ++k;
+      while (k < n && !anchor(k))
+      {
+        ++k;
+      }
+    }
     if (!judgedNotClean)
     {
       j = k;
@@ -332,6 +421,19 @@ void retracePath(QSkeleton& skeleton,
             path.points[static_cast<std::size_t>(tr.hit)].radius_mm });
           done = true;
         }
+        else if (const auto [q, c] = junctionReached(tr, a, +1, rForward); q >= 0)
+        {
+          const Vec3 to = path.points[static_cast<std::size_t>(q)].position_World_mm;
+          std::vector<Vec3> via(
+            tr.centres.begin() + 1, tr.centres.begin() + static_cast<std::ptrdiff_t>(c) + 1);
+          plans.push_back({ a + 1,
+            q - 1,
+            resampled(path.points[static_cast<std::size_t>(a)].position_World_mm, via, &to, voxel),
+            path.points[static_cast<std::size_t>(a)].radius_mm,
+            path.points[static_cast<std::size_t>(q)].radius_mm });
+          done = true;
+          ++result.stretchesEndedAtJunction;
+        }
       }
       rBackward = done ? 0.0 : tubeRadius(b, a);
       if (!done && std::isfinite(rBackward) && rBackward > 0.0)
@@ -365,6 +467,20 @@ void retracePath(QSkeleton& skeleton,
             path.points[static_cast<std::size_t>(b)].radius_mm });
           done = true;
         }
+        else if (const auto [q, c] = junctionReached(tr, b, -1, rBackward); q >= 0)
+        {
+          const Vec3 to = path.points[static_cast<std::size_t>(b)].position_World_mm;
+          std::vector<Vec3> via(
+            tr.centres.rbegin() + static_cast<std::ptrdiff_t>(tr.centres.size() - 1 - c),
+            tr.centres.rend() - 1);
+          plans.push_back({ q + 1,
+            b - 1,
+            resampled(path.points[static_cast<std::size_t>(q)].position_World_mm, via, &to, voxel),
+            path.points[static_cast<std::size_t>(q)].radius_mm,
+            path.points[static_cast<std::size_t>(b)].radius_mm });
+          done = true;
+          ++result.stretchesEndedAtJunction;
+        }
       }
       result.stretchesTracked += done ? 1 : 0;
     }
@@ -392,6 +508,8 @@ void retracePath(QSkeleton& skeleton,
               path.points[static_cast<std::size_t>(a)].position_World_mm, via, nullptr, voxel),
             R,
             R });
+          plans.back().freeEnd = +1;
+          plans.back().joinReach_mm = 2.0 * (r + 1.0) * voxel;
           result.stretchesTracked += 1;
         }
       }
@@ -418,6 +536,8 @@ void retracePath(QSkeleton& skeleton,
           std::reverse(pts.begin(), pts.end());
           const double R = path.points[static_cast<std::size_t>(b)].radius_mm;
           plans.push_back({ 0, b - 1, pts, R, R });
+          plans.back().freeEnd = -1;
+          plans.back().joinReach_mm = 2.0 * (r + 1.0) * voxel;
           result.stretchesTracked += 1;
         }
       }
@@ -527,6 +647,52 @@ void retracePath(QSkeleton& skeleton,
         positions.push_back(path.points[static_cast<std::size_t>(p.first)].position_World_mm);
         positions.insert(positions.end(), p.after.begin(), p.after.end());
       }
+      // A free end re-traced as far as the tube goes: a path joined to the stretch beyond the
+      // tube's end (farther than a junction's reach from the track) joined the clutter the
+      // coder ran onto, not the tube; moved onto the track it would jump across the clutter.
+      // It is detached (through a point past the track's end that goes, as in a cut); step 5
+      // judges it as a path of its own.
+      const auto nearestOnTrack = [&](const Vec3& x, double& distance)
+      {
+        int best = -1;
+        distance = std::numeric_limits<double>::infinity();
+        for (int q = 0; q < static_cast<int>(positions.size()); ++q)
+        {
+          const double d = (positions[static_cast<std::size_t>(q)] - x).norm();
+          if (q != dummy && d < distance)
+          {
+            distance = d;
+            best = q;
+          }
+        }
+        return best;
+      };
+      if (!p.remove && p.freeEnd != 0)
+      {
+        bool far = false;
+        for (const Junction& jn : skeleton.junctions)
+        {
+          double d = 0.0;
+          far =
+            far ||
+            (jn.parentPath == static_cast<int>(pi) && jn.parentPoint >= p.first &&
+              jn.parentPoint <= p.last &&
+              (nearestOnTrack(
+                 path.points[static_cast<std::size_t>(jn.parentPoint)].position_World_mm, d) < 0 ||
+                d > p.joinReach_mm));
+        }
+        if (far && p.freeEnd > 0)
+        {
+          dummy = static_cast<int>(positions.size());
+          positions.push_back(path.points[static_cast<std::size_t>(p.last)].position_World_mm);
+        }
+        else if (far)
+        {
+          dummy = 0;
+          positions.insert(
+            positions.begin(), path.points[static_cast<std::size_t>(p.first)].position_World_mm);
+        }
+      }
       const int added = static_cast<int>(positions.size());
       std::vector<SkeletonPoint> fresh(static_cast<std::size_t>(added));
       const double count = static_cast<double>(added + 1);
@@ -535,7 +701,7 @@ void retracePath(QSkeleton& skeleton,
         SkeletonPoint& sp = fresh[static_cast<std::size_t>(q)];
         sp.position_World_mm = positions[static_cast<std::size_t>(q)];
         const double f = (q + 1) / count;
-        sp.radius_mm = dummy < 0 ? p.radiusFrom_mm + (p.radiusTo_mm - p.radiusFrom_mm) * f
+        sp.radius_mm = !p.remove ? p.radiusFrom_mm + (p.radiusTo_mm - p.radiusFrom_mm) * f
                                  : (q < dummy ? p.radiusFrom_mm : p.radiusTo_mm);
         sp.label = PointLabel::Ordinary;
       }
@@ -549,16 +715,11 @@ void retracePath(QSkeleton& skeleton,
           // A path joined inside the re-traced stretch: to the nearest point of the track (to
           // the point that goes, in a clutter cut: it joined the clutter).
           const Vec3 old = path.points[static_cast<std::size_t>(jn.parentPoint)].position_World_mm;
-          int best = dummy;
-          double bestDistance = std::numeric_limits<double>::infinity();
-          for (int q = 0; dummy < 0 && q < added; ++q)
+          double bestDistance = 0.0;
+          int best = p.remove ? dummy : nearestOnTrack(old, bestDistance);
+          if (!p.remove && dummy >= 0 && (best < 0 || bestDistance > p.joinReach_mm))
           {
-            const double d = (positions[static_cast<std::size_t>(q)] - old).norm();
-            if (d < bestDistance)
-            {
-              bestDistance = d;
-              best = q;
-            }
+            best = dummy; // beyond the tube's end: detached below
           }
           moved[ji] = best >= 0 ? p.first + best : std::max(0, p.first - 1);
           ++result.junctionsMoved;

@@ -42,7 +42,20 @@
 //    track): points every voxel along the track, radius interpolated between the ends, the path
 //    re-smoothed there with the filter's windows (skeletonPathWindows). At a free end the track
 //    from the clean side replaces the stretch as far as the tube goes (at most the stretch's
-//    length + 1 voxel).
+//    length + 1 voxel); a path joined to that stretch farther than 2 (r + 1) voxels from the
+//    track joined the clutter beyond the tube's end and is detached, not moved onto the track.
+//    Clutter widens a section: s wider than the tube r the track comes from, s > r + max(1 voxel,
+//    r / 2) and s >= 1.5 voxels (the cut's blob criterion, relative to the tube: a thick
+//    vessel's own sections are all wider than 1.5 voxels). A lone clean point (its judged
+//    neighbours both not clean with s > 0, one wider than the tube: the coder's centre pulled
+//    into a contact) does not end a stretch that a track from the tube before it can enter. A
+//    track that meets no clean point but comes within reach of a point where another vessel
+//    joins the path (both with clean runs), with a section wider than the tube between its
+//    start and that junction (the path ran onto clutter; a clean junction's sections are only
+//    elongated), replaces the stretch up to that junction (the vessel goes on as the other
+//    path; the path turned onto a branch). Counted in Result::loneSectionsCrossed and
+//    Result::stretchesEndedAtJunction. (Issue 16 item 5; project rules, Docs/CENTERLINES.md
+//    step 4, "Past clutter".)
 // 4. Cutting. A stretch that no track crossed is clutter when it has >= 3 points, its sections
 //    are wide (median s >= 1.5 voxels: not a thin vessel's noisy wall), mostly not round (a
 //    plate's band) or wider than the tube it left (s > r + max(1, r / 2): a blob), longer than
@@ -109,7 +122,9 @@ public:
     int stretchesTracked = 0; ///< replaced by the tube's own track
     int junctionsMoved = 0;   ///< paths joined inside a re-traced stretch, moved onto the track
     int stretchesCut = 0;     ///< clutter stretches removed (a path split, or its free end trimmed)
-    int junctionsDetached = 0; ///< paths joined inside a removed stretch (their end is free now)
+    int junctionsDetached = 0;   ///< paths joined inside a removed stretch (their end is free now)
+    int loneSectionsCrossed = 0; ///< lone clean sections amid clutter a stretch ran on across
+    int stretchesEndedAtJunction = 0; ///< re-traced up to a junction (no clean point was met)
     std::size_t pointsJudged = 0;
     std::size_t pointsNotClean = 0;
   };
