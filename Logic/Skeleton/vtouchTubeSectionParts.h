@@ -1,6 +1,8 @@
 // TubeSectionTracker's parts (internal to Logic/Skeleton; see vtouchTubeSectionTracker.h for the
 // rules): the section rays, the tube's centre in a section, following a tube across a contact
-// (vtouchTubeSectionFollower.cxx) and removing clutter stretches from a skeleton
+// (vtouchTubeSectionFollower.cxx), a path's sections judged (phase 1,
+// vtouchTubeSectionJudgement.cxx) and its stretches re-traced (phase 2,
+// vtouchTubeSectionRetrace.cxx), and removing clutter stretches from a skeleton
 // (vtouchTubeSectionCutting.cxx).
 #pragma once
 
@@ -8,6 +10,7 @@
 #include "vtouchSectionSampler.h"
 #include "vtouchTubeSectionTracker.h"
 
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -88,6 +91,48 @@ std::vector<Vec3> resampled(const Vec3& from,
 int cutStretches(QSkeleton& skeleton,
   const std::vector<std::vector<std::pair<int, int>>>& cuts,
   std::vector<std::vector<TubeSectionTracker::Section>>& sections);
+
+/// One point's section as phase 1 judges it.
+struct PointSection
+{
+  double s = 0.0;     ///< median ray (voxels)
+  bool round = false; ///< longest ray within the round-shape bound
+  bool zone = false;  ///< near a junction: not judged
+  bool clean = false;
+};
+
+/// Phase 1's verdict on one path: its sections, its pieces between cuts and whether it is a tube.
+struct PathJudgement
+{
+  std::vector<PointSection> sec;
+  std::vector<double> arc;          ///< arc length from the head (voxels)
+  std::vector<int> cuts;            ///< the path's ends and the points where others join
+  std::vector<int> vessel;          ///< piece between two cuts each point lies in
+  std::vector<double> vesselMedian; ///< per piece: the median s of its round sections
+  bool tube = false;                ///< has a clean run of >= 3 points: a vessel
+};
+
+/// Phase 1 (the header's 1-2): the sections of `path` and which of them are clean; the points
+/// judged and not clean are counted into `counts`.
+PathJudgement judgePath(const SkeletonPath& path,
+  const std::vector<int>& attachedPoints,
+  const std::vector<Zone>& zones,
+  const SectionSampler& sampler,
+  const TubeSectionTracker::Settings& s,
+  TubeSectionTracker::Result& counts);
+
+/// Phase 2 (the header's 2-4) on path `pi`: its stretches re-traced in place (paths joined inside
+/// one moved onto the track); the clutter stretches to remove go to `clutterCuts[pi]`.
+void retracePath(QSkeleton& skeleton,
+  std::size_t pi,
+  std::vector<PathJudgement>& judged,
+  const std::vector<std::vector<int>>& realJunctionPoints,
+  const std::vector<Zone>& zones,
+  const SectionSampler& sampler,
+  double largestSpacing,
+  const TubeSectionTracker::Settings& s,
+  TubeSectionTracker::Result& result,
+  std::vector<std::vector<std::pair<int, int>>>& clutterCuts);
 
 } // namespace tube_sections
 } // namespace vtouch
