@@ -111,9 +111,9 @@ private:
   /// ReaderFilesRead, ReaderReadsPiecesAlone (one value each).
   void AddReadStatistics(vtkImageData* output);
   /// The voxels of this reader's last read, when they may be copied into the next one (same
-  /// file, untouched, held by something else than `output`: see "Streaming" above), else null;
-  /// `extent` gets their extent.
-  vtkDataArray* ReusablePiece(vtkImageData* output, int extent[6]) const;
+  /// file, untouched; whether something else holds them is decided in RequestData once the
+  /// output let go of them: see "Streaming" above), else null; `extent` gets their extent.
+  vtkDataArray* ReusablePiece(int extent[6]) const;
   /// Remembers what `output` now holds, for ReusablePiece.
   void RememberPiece(vtkImageData* output);
   /// Opens the file (header only); empty on success, else the reason.
