@@ -150,7 +150,8 @@ def check_grown_piece_reuse(name, path, streams):
     """A piece asked for again grown by ghost levels (a distributed VesselCenterline after the view
     showed the piece): held elsewhere too (a representation's shallow copy), the voxels it holds
     are copied and only the rest is read; held by the reader's output alone, or from a compressed
-    file, everything is read again (the peak memory stays the new piece's)."""
+    file, or asked for more than twice as large (the whole volume), everything is read again (the
+    peak memory stays the new piece's)."""
     proxy, reader = reader_for(path)
     reader.UpdatePiece(0, 1, 0)
     whole = as_array(reader.GetOutput()).copy()
@@ -186,6 +187,23 @@ def check_grown_piece_reuse(name, path, streams):
                                                                      "not held"))
         del view_copy
         reader.UpdatePiece(1, 2, 0)  # another piece in between: the next round starts afresh
+    # The whole volume after a quarter piece, held by a view: more than twice the piece, read anew
+    # (the copy is for a piece grown by its ghost margin; on the first rank asked for the whole
+    # volume it raised the peak memory).
+    reader.UpdatePiece(0, 4, 0)
+    quarter = reader.GetOutput().GetExtent()
+    view_copy = vtkImageData()
+    view_copy.ShallowCopy(reader.GetOutput())
+    reader.UpdatePiece(0, 1, 0)
+    full = reader.GetOutput()
+    check(voxels(full.GetExtent()) > 2 * voxels(quarter),
+          "%s: the whole volume is more than twice the piece %s" % (name, quarter))
+    check(field(full, "ReaderVoxelBytesReused") == 0 and
+          field(full, "ReaderVoxelBytesRead") == voxels(full.GetExtent()) * item,
+          "%s: the whole volume after a held quarter piece is read anew (copied %d, read %d)"
+          % (name, field(full, "ReaderVoxelBytesReused"), field(full, "ReaderVoxelBytesRead")))
+    check(np.array_equal(as_array(full), whole), "%s: the whole volume holds the file's values" % name)
+    del view_copy
     Delete(proxy)
 
 
