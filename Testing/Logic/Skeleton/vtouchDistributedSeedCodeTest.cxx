@@ -327,6 +327,135 @@ TEST(DistributedSeedCode, ALayoutWithoutGhostLayersIsRefused)
     DistributedSeedCode(good, pieceMask(whole, good), { 1, 0, 1 }), std::invalid_argument);
 }
 
+TEST(VoxelCoderGlobalField, TheWholeMasksFieldGivesTheSeededRunsSkeleton)
+{
+  const Dims dims{ 44, 40, 48 };
+  std::mt19937 random(11);
+  for (unsigned trial = 0; trial < 3; ++trial)
+  {
+    const SparseVesselMask whole = maskOf(dims, randomTree(dims, 300 + trial));
+    const std::array<std::int64_t, 3> root = randomVesselVoxel(whole, random);
+    VoxelCodingParameters seeded;
+    seeded.hasSeed = true;
+    seeded.seedIndex = root;
+    const RawSkeleton expected = VoxelCoder(whole, seeded).run();
+    const std::vector<float> ss = singleRun(whole, seeded.spacing_mm, root);
+    VoxelCodingParameters global;
+    global.globalSs_mm = &ss;
+    const RawSkeleton got = VoxelCoder(whole, global).run();
+    // The same tree; the paths may come in another order (the tips' ties are broken in SS
+    // order, which the sorted field breaks by index, the single run's queue by its pops).
+    const auto voxelsOf = [](const RawSkeleton& k)
+    {
+      std::vector<std::array<std::int64_t, 3>> v;
+      for (const RawSkeletonPath& p : k.paths)
+      {
+        v.insert(v.end(), p.voxels.begin(), p.voxels.end());
+      }
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+      return v;
+    };
+    ASSERT_GT(got.paths.size(), 0U);
+    EXPECT_EQ(got.paths.size(), expected.paths.size());
+    EXPECT_EQ(got.junctions.size(), expected.junctions.size());
+    // Where a branch joins, the bridge to its parent may differ by a voxel or two: the parent is
+    // the branch traced first.
+    const auto farthestFrom = [](const std::vector<std::array<std::int64_t, 3>>& a,
+                                const std::vector<std::array<std::int64_t, 3>>& b)
+    {
+      double worst = 0.0;
+      for (const auto& p : a)
+      {
+        double best = 1e300;
+        for (const auto& q : b)
+        {
+          best = std::min(best,
+            std::sqrt(double((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                             (p[2] - q[2]) * (p[2] - q[2]))));
+        }
+        worst = std::max(worst, best);
+      }
+      return worst;
+    };
+    const double hausdorff = std::max(farthestFrom(voxelsOf(got), voxelsOf(expected)),
+      farthestFrom(voxelsOf(expected), voxelsOf(got)));
+    std::printf("trial %u: %zu paths, skeleton voxels %.2f voxel apart at most\n",
+      trial,
+      got.paths.size(),
+      hausdorff);
+    EXPECT_LE(hausdorff, 2.0);
+  }
+  // A field of the wrong size is refused.
+  const SparseVesselMask whole = maskOf(dims, randomTree(dims, 300));
+  const std::vector<float> wrong(3, 0.0F);
+  VoxelCodingParameters bad;
+  bad.globalSs_mm = &wrong;
+  EXPECT_THROW(VoxelCoder(whole, bad), std::invalid_argument);
+}
+
+TEST(VoxelCoderGlobalField, PiecesCodedWithItHaveTheSingleRunsEndsAndJunctions)
+{
+  // Each rank codes its piece with the distributed SS field: inside its owned box (3 voxels from
+  // the shared faces) it places the single run's free ends and junctions; coded from roots of
+  // their own (today), the pieces differ (the test asserts that the trees show it somewhere).
+  const Dims dims{ 44, 40, 48 };
+  const std::array<double, 3> spacing_mm{ 1, 1, 1 };
+  constexpr int kInset = 3;
+  std::mt19937 random(23);
+  int ownRootsDiffer = 0, globalJunctionsDiffer = 0, boxes = 0;
+  for (unsigned trial = 0; trial < 8; ++trial)
+  {
+    const SparseVesselMask whole = maskOf(dims, randomTree(dims, 500 + trial));
+    const std::array<std::int64_t, 3> root = randomVesselVoxel(whole, random);
+    VoxelCodingParameters seeded;
+    seeded.hasSeed = true;
+    seeded.seedIndex = root;
+    const RawSkeleton single = VoxelCoder(whole, seeded).run();
+    for (const std::array<int, 3>& counts : { std::array<int, 3>{ 1, 1, 2 },
+           std::array<int, 3>{ 1, 2, 2 },
+           std::array<int, 3>{ 2, 2, 2 } })
+    {
+      const std::vector<PieceLayout> pieces = layouts(dims, counts, 8);
+      std::vector<std::array<std::pair<int, int>, 3>> topology(pieces.size());
+      InProcessWorld world(static_cast<int>(pieces.size()));
+      world.run(
+        [&](int r, RankCollectives& c)
+        {
+          const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
+          const SparseVesselMask mask = pieceMask(whole, l);
+          DistributedSeedCode code(l, mask, spacing_mm);
+          code.run(c, { root });
+          VoxelCodingParameters own;
+          VoxelCodingParameters global;
+          global.globalSs_mm = &code.ss();
+          const VoxelBox& owned = l.owned[static_cast<std::size_t>(r)];
+          topology[static_cast<std::size_t>(r)] = { test::endsAndJunctionsIn(
+                                                      single, { 0, 0, 0 }, owned, dims, kInset),
+            test::endsAndJunctionsIn(VoxelCoder(mask, own).run(), l.mine().lo, owned, dims, kInset),
+            test::endsAndJunctionsIn(
+              VoxelCoder(mask, global).run(), l.mine().lo, owned, dims, kInset) };
+        });
+      for (std::size_t r = 0; r < topology.size(); ++r)
+      {
+        SCOPED_TRACE("trial " + std::to_string(trial) + ", " + std::to_string(pieces.size()) +
+                     " pieces, rank " + std::to_string(r));
+        // The free ends (the spurs at the pieces' own roots were the defect) always.
+        EXPECT_EQ(topology[r][2].first, topology[r][0].first);
+        globalJunctionsDiffer += topology[r][2].second != topology[r][0].second;
+        ownRootsDiffer += topology[r][1] != topology[r][0];
+        ++boxes;
+      }
+    }
+  }
+  std::printf("%d owned boxes: own roots differ in %d, the global field's junctions in %d\n",
+    boxes,
+    ownRootsDiffer,
+    globalJunctionsDiffer);
+  EXPECT_GT(ownRootsDiffer, 0);
+  EXPECT_LT(globalJunctionsDiffer, ownRootsDiffer);
+}
+
 /// Brute-force Bellman-Ford in float from sources with initial distances (the reference of relax).
 std::vector<float> bellmanFord(const skeleton::VoxelGrid& grid,
   const std::vector<skeleton::SeedCodeStage::Source>& sources)

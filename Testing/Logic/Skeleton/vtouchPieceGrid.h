@@ -1,9 +1,11 @@
 // Pieces of a whole volume for the distributed stages' tests and benchmarks: the executive's
-// split into boxes per axis, and a rank's part of a whole mask.
+// split into boxes per axis, a rank's part of a whole mask, and a skeleton's free ends and
+// junctions in a rank's box.
 #pragma once
 
 #include "vtouchPieceLayout.h"
 #include "vtouchSparseVesselMask.h"
+#include "vtouchVoxelCoding.h"
 
 #include <algorithm>
 #include <array>
@@ -79,6 +81,39 @@ inline SparseVesselMask pieceMask(const SparseVesselMask& whole, const PieceLayo
       }
   m.finalize();
   return m;
+}
+
+/// Free ends and junctions of `skeleton` (voxels offset by `lo` into the whole index) inside
+/// `box` shrunk by `inset` voxels on the faces that are not the volume's.
+inline std::pair<int, int> endsAndJunctionsIn(const RawSkeleton& skeleton,
+  const std::array<std::int64_t, 3>& lo,
+  VoxelBox box,
+  const std::array<std::int64_t, 3>& dims,
+  int inset)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    box.lo[a] += box.lo[a] > 0 ? inset : 0;
+    box.hi[a] -= box.hi[a] < dims[a] - 1 ? inset : 0;
+  }
+  const auto in = [&](const std::array<std::int64_t, 3>& v)
+  { return box.contains(v[0] + lo[0], v[1] + lo[1], v[2] + lo[2]); };
+  int ends = 0, junctions = 0;
+  for (const RawSkeletonPath& p : skeleton.paths)
+  {
+    if (p.voxels.empty())
+    {
+      continue;
+    }
+    ends += p.headJunction < 0 && in(p.voxels.front());
+    ends += p.tailJunction < 0 && p.voxels.size() > 1 && in(p.voxels.back());
+  }
+  for (const RawJunction& j : skeleton.junctions)
+  {
+    const RawSkeletonPath& parent = skeleton.paths[static_cast<std::size_t>(j.parentPath)];
+    junctions += in(parent.voxels[static_cast<std::size_t>(j.parentPoint)]);
+  }
+  return { ends, junctions };
 }
 
 } // namespace vtouch::test
