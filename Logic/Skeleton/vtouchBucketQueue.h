@@ -55,6 +55,52 @@ public:
   }
   std::size_t peak() const { return this->Peak; }
 
+  // For sources that start at different keys (SeedCodeStage::relax, the distributed SS code's
+  // rounds): the caller pushes each source when the queue reaches its bucket, so that every key
+  // pushed stays within the circular window of the current bucket.
+
+  /// The bucket of `key` (>= 0).
+  std::uint64_t bucketOf(double key) const
+  {
+    const double b = key * this->Inverse;
+    return b > 0.0 ? static_cast<std::uint64_t>(b) : 0;
+  }
+  bool empty() const { return this->Size == 0; }
+  /// Like pop(), but never moves past bucket `last`: false when no entry lies at or below it
+  /// (the queue is then at bucket `last`, or empty).
+  bool popUpTo(std::uint32_t& lin, std::uint64_t last)
+  {
+    while (this->Size > 0)
+    {
+      std::vector<std::uint32_t>& b = this->Buckets[this->Current & this->Mask];
+      if (!b.empty())
+      {
+        if (this->Current > last)
+        {
+          return false;
+        }
+        lin = b.back();
+        b.pop_back();
+        --this->Size;
+        return true;
+      }
+      if (this->Current >= last)
+      {
+        return false;
+      }
+      ++this->Current;
+    }
+    return false;
+  }
+  /// Moves an empty queue on to `bucket` (no move back), so that keys from there on fit.
+  void skipTo(std::uint64_t bucket)
+  {
+    if (this->Size == 0)
+    {
+      this->Current = std::max(this->Current, bucket);
+    }
+  }
+
 private:
   double Inverse; // 1 / bucket width
   std::vector<std::vector<std::uint32_t>> Buckets;

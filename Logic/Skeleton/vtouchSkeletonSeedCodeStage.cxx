@@ -109,6 +109,77 @@ void SeedCodeStage::propagate(const std::vector<std::uint32_t>& sources)
   peakQueueEntries = std::max(peakQueueEntries, queue.peak());
 }
 
+std::size_t SeedCodeStage::relax(std::vector<Source> sources, std::vector<std::uint32_t>& lowered)
+{
+  const StageTimer timer{ meter, "ss" };
+  BucketQueue queue(grid.minSpacing, grid.maxSpacing * std::sqrt(3.0));
+  // Ascending distance (ties in the callers' order): each enters the queue at its own bucket.
+  std::stable_sort(sources.begin(),
+    sources.end(),
+    [](const Source& a, const Source& b) { return a.ss_mm < b.ss_mm; });
+  float* const ss = codes.ss.data();
+  std::uint8_t* const flags = codes.flags.data();
+  const auto lower = [&](std::uint32_t lin, std::uint32_t r, float d)
+  {
+    ss[r] = d;
+    flags[r] &= static_cast<std::uint8_t>(~kDone);
+    lowered.push_back(lin);
+    queue.push(lin, d);
+  };
+  std::size_t next = 0;
+  std::size_t settled = 0;
+  std::uint32_t lin = 0;
+  std::uint32_t pops = 0;
+  while (true)
+  {
+    const std::uint64_t last = next < sources.size() ? queue.bucketOf(sources[next].ss_mm)
+                                                     : std::numeric_limits<std::uint64_t>::max();
+    if (!queue.popUpTo(lin, last))
+    {
+      if (next == sources.size())
+      {
+        break;
+      }
+      // Every entry below the next source's bucket is final: that bucket's sources join it.
+      queue.skipTo(last);
+      for (; next < sources.size() && queue.bucketOf(sources[next].ss_mm) == last; ++next)
+      {
+        const Source& s = sources[next];
+        const std::uint32_t r = grid.mask.rank(s.lin);
+        if (s.ss_mm < ss[r])
+        {
+          lower(s.lin, r, s.ss_mm);
+        }
+      }
+      continue;
+    }
+    if ((++pops & 0xFFFF) == 0)
+    {
+      meter.checkpoint();
+    }
+    const std::uint32_t r = grid.mask.rank(lin);
+    if (flags[r] & kDone)
+    {
+      continue; // a stale entry of a voxel lowered while queued
+    }
+    flags[r] |= kDone;
+    ++settled;
+    const float d = ss[r];
+    grid.forNeighbours(lin,
+      [&](std::uint64_t u, int n, std::uint32_t ru)
+      {
+        const float nd = d + grid.offLenF[n];
+        if (nd < ss[ru])
+        {
+          lower(static_cast<std::uint32_t>(u), ru, nd);
+        }
+      });
+    meter.tick();
+  }
+  peakQueueEntries = std::max(peakQueueEntries, queue.peak());
+  return settled;
+}
+
 void SeedCodeStage::reset()
 {
   for (std::uint32_t lin : codes.order)

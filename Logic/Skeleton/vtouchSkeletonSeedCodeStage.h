@@ -34,6 +34,24 @@ public:
   /// Propagates the SS code from `sources` (vessel voxels, lin) over their component.
   void propagate(const std::vector<std::uint32_t>& sources);
 
+  /// A voxel (lin) and its distance from the root, mm: a source of relax().
+  struct Source
+  {
+    std::uint32_t lin;
+    float ss_mm;
+  };
+
+  /// The propagate() variant of the distributed SS code's rounds (vtouch::DistributedSeedCode):
+  /// lowers `ss` from `sources` (each a vessel voxel with a distance from the root that another
+  /// piece found, or 0 at the root) and from every voxel it lowers, by the same Dijkstra on the
+  /// same bucket queue, each source entering the queue when it reaches the source's bucket.
+  /// Unlike propagate(), it keeps the `ss` of earlier calls (only lower values pass) and clears
+  /// kDone on every voxel it lowers, so calls may follow each other; it leaves `order` alone.
+  /// Appends to `lowered` (lin) every voxel whose `ss` it lowered (a voxel may appear twice).
+  /// Returns the voxels it settled (popped with their final value): each lowered voxel once,
+  /// as Dijkstra does, unless float round-off lowers a settled one again.
+  std::size_t relax(std::vector<Source> sources, std::vector<std::uint32_t>& lowered);
+
   /// Undoes the last propagation (its voxels back to infinite SS, kDone clear).
   void reset();
 

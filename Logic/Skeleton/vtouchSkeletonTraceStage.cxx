@@ -17,9 +17,10 @@ namespace
 constexpr float kInf = VoxelCodes::kInf;
 } // namespace
 
-TraceStage::TraceStage(SkeletonTracer& t, double minimumBranchLength_radii)
+TraceStage::TraceStage(SkeletonTracer& t, double minimumBranchLength_radii, bool rootBandOnly)
   : tracer(t)
   , minimumBranchLength(minimumBranchLength_radii)
+  , onlyRootBandIsRoot(rootBandOnly)
 {
 }
 
@@ -55,7 +56,10 @@ std::size_t TraceStage::run()
     }
     const std::size_t patience = tracer.patienceFor(clusters[tip]);
     Trace t = tracer.descend(ClusterStage::tipStart(grid, clusters[tip]), kInf, patience);
-    if (t.path < 0 && out.paths.size() > firstPath)
+    const bool atRoot =
+      !onlyRootBandIsRoot ||
+      (!t.voxels.empty() && tracer.codes.ss[grid.mask.rank(t.voxels.back())] < grid.bandWidth);
+    if (t.path < 0 && out.paths.size() > firstPath && atRoot)
     {
       t.path = clusters[root].path; // reached the root beside the first path
       t.point = clusters[root].point;

@@ -22,7 +22,12 @@ namespace skeleton
 class TraceStage
 {
 public:
-  TraceStage(SkeletonTracer& tracer, double minimumBranchLength);
+  /// `onlyRootBandIsRoot`: a piece coded with the global SS field (VoxelCodingParameters::
+  /// globalSs_mm) has local minima of SS where the vessels enter it, besides the root (band 0)
+  /// when it holds it; a trace that ends at such an entry, on no path, stays a path of its own
+  /// (its end is a cut end at the piece's face, for the stitch) instead of joining the first
+  /// path at the root. Off (the single run): every trace ends at the root.
+  TraceStage(SkeletonTracer& tracer, double minimumBranchLength, bool onlyRootBandIsRoot = false);
 
   /// Traces the component's tips; returns the number of paths it emitted.
   std::size_t run();
@@ -37,6 +42,7 @@ private:
 
   SkeletonTracer& tracer;
   double minimumBranchLength; // in local radii
+  bool onlyRootBandIsRoot;
 };
 
 } // namespace skeleton

@@ -15,8 +15,10 @@
 #include "vtouchSkeletonVoxelCodes.h"
 #include "vtouchSkeletonVoxelGrid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
 
 namespace vtouch
 {
@@ -47,6 +49,8 @@ struct VoxelCoder::Impl
   void traceComponent();
   /// Flags the last propagation's voxels as handled.
   void markComponent();
+  /// Stages 3-7 on the voxels the given global SS field reaches (parameters' globalSs_mm).
+  void codeGlobalField();
 
   const VoxelCodingParameters& par;
   skeleton::RunMeter meter;
@@ -66,6 +70,35 @@ void VoxelCoder::Impl::markComponent()
   for (std::uint32_t v : codes.order)
   {
     codes.flags[grid.mask.rank(v)] |= skeleton::VoxelCodes::kComponent;
+  }
+}
+
+void VoxelCoder::Impl::codeGlobalField()
+{
+  codes.ss = *par.globalSs_mm;
+  // What propagate() leaves: the reached voxels in SS order (ties by index), flagged kDone.
+  codes.order.clear();
+  grid.mask.forEach(
+    [&](std::uint64_t lin)
+    {
+      if (codes.ss[grid.mask.rank(lin)] != skeleton::VoxelCodes::kInf)
+      {
+        codes.order.push_back(static_cast<std::uint32_t>(lin));
+      }
+    });
+  const std::vector<float>& ss = codes.ss;
+  const skeleton::VoxelGrid& g = grid;
+  std::stable_sort(codes.order.begin(),
+    codes.order.end(),
+    [&](std::uint32_t a, std::uint32_t b) { return ss[g.mask.rank(a)] < ss[g.mask.rank(b)]; });
+  for (std::uint32_t lin : codes.order)
+  {
+    codes.flags[grid.mask.rank(lin)] |= skeleton::VoxelCodes::kDone;
+  }
+  if (!codes.order.empty())
+  {
+    handleComponent({}, false);
+    markComponent();
   }
 }
 
@@ -94,7 +127,7 @@ void VoxelCoder::Impl::traceComponent()
 {
   const skeleton::StageTimer timer{ meter, "trace(all)" };
   const std::size_t firstPath = draft.skeleton.paths.size();
-  if (skeleton::TraceStage(tracer, par.minimumBranchLength).run() == 0)
+  if (skeleton::TraceStage(tracer, par.minimumBranchLength, par.globalSs_mm != nullptr).run() == 0)
   {
     return;
   }
@@ -125,7 +158,11 @@ RawSkeleton VoxelCoder::Impl::run()
   // The BS code runs beside the first propagation(s); handleComponent() waits for it.
   boundaryCode.start();
 
-  if (par.hasSeed)
+  if (par.globalSs_mm)
+  {
+    codeGlobalField();
+  }
+  else if (par.hasSeed)
   {
     const std::int64_t* s = par.seedIndex.data();
     handleComponent({ static_cast<std::uint32_t>(grid.linOf(s[0], s[1], s[2])) }, false);
@@ -211,6 +248,12 @@ VoxelCoder::VoxelCoder(const SparseVesselMask& mask, const VoxelCodingParameters
   if (!(parameters.minimumBranchLength >= 0.0) || !std::isfinite(parameters.minimumBranchLength))
   {
     throw std::invalid_argument("minimum branch length must be finite and >= 0");
+  }
+  if (parameters.globalSs_mm && parameters.globalSs_mm->size() != mask.vesselCount())
+  {
+    throw std::invalid_argument("the global SS field has " +
+                                std::to_string(parameters.globalSs_mm->size()) + " values for " +
+                                std::to_string(mask.vesselCount()) + " vessel voxels");
   }
   if (parameters.hasSeed)
   {

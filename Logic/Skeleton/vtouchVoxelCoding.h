@@ -37,6 +37,12 @@ struct VoxelCodingParameters
   double clusterWidth_mm = 0.0;
   bool hasSeed = false;                    ///< skeletonize only the component of the seed
   std::array<std::int64_t, 3> seedIndex{}; ///< seed voxel (root of the single-seed code)
+  /// The distributed coding's SS code (vtouch::DistributedSeedCode::ss(): the single run's field
+  /// on this piece, mm, indexed by the mask's rank), or null (default): the coder propagates its
+  /// own. With it the coder codes the voxels with a finite value as one component, rooted where
+  /// the field is lowest (the root, or where the vessels enter the piece), and ignores the rest;
+  /// the seed is then not used. Not owned: it must outlive run().
+  const std::vector<float>* globalSs_mm = nullptr;
 };
 
 struct RawSkeletonPath
