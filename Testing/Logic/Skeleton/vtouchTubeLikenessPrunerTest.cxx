@@ -7,6 +7,8 @@
 #include "vtouchTubeSectionTracker.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
+#include "vtouchMaskSceneSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <itkImage.h>
@@ -23,59 +25,10 @@ using namespace vtouch;
 
 namespace
 {
-using Image = itk::Image<float, 3>;
-using Filter = VoxelCodingSkeletonFilter<Image>;
 using Dims = std::array<std::int64_t, 3>;
-
-SparseVesselMask makeMask(const Dims& dims, const std::function<bool(const Vec3&)>& inside)
-{
-  SparseVesselMask mask(dims);
-  for (std::int64_t k = 0; k < dims[2]; ++k)
-  {
-    for (std::int64_t j = 0; j < dims[1]; ++j)
-    {
-      for (std::int64_t i = 0; i < dims[0]; ++i)
-      {
-        if (inside(Vec3{ double(i), double(j), double(k) }))
-        {
-          mask.set(static_cast<std::uint64_t>(i + dims[0] * (j + dims[1] * k)));
-        }
-      }
-    }
-  }
-  mask.finalize();
-  return mask;
-}
-
-/// Distance from p to the segment a-b.
-double segmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
-{
-  const Vec3 ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.dot(ab), 0.0, 1.0);
-  return (p - (a + ab * t)).norm();
-}
-
-/// Codes `mask` from the seed voxel (unit spacing, origin 0) as the raw path does.
-QSkeleton code(const Dims& dims, const SparseVesselMask& mask, const Vec3& seed)
-{
-  auto image = Image::New();
-  Image::RegionType region;
-  region.SetSize({ { static_cast<itk::SizeValueType>(dims[0]),
-    static_cast<itk::SizeValueType>(dims[1]),
-    static_cast<itk::SizeValueType>(dims[2]) } });
-  image->SetRegions(region);
-  image->Allocate(true);
-  auto filter = Filter::New();
-  filter->SetInput(image);
-  filter->SetVesselMask(std::make_shared<const SparseVesselMask>(mask));
-  Filter::PointType p;
-  p[0] = seed.x;
-  p[1] = seed.y;
-  p[2] = seed.z;
-  filter->SetSeedPoint(p);
-  filter->Update();
-  return filter->GetSkeleton();
-}
+using mask_scenes::codeFromSeed;
+using mask_scenes::makeMask;
+using mask_scenes::segmentDistance;
 
 /// Share of the skeleton's points farther than `d` from every segment of `axes`.
 double shareOff(const QSkeleton& s, const std::vector<std::array<Vec3, 2>>& axes, double d)
@@ -177,7 +130,7 @@ TEST(TubeLikenessPruner, KeepsAStraightTubeAndAThinDiagonalTube)
   const Vec3 a{ 4, 24, 24 }, b{ 60, 24, 24 };
   const SparseVesselMask tube =
     makeMask(dims, [&](const Vec3& p) { return segmentDistance(p, a, b) <= 3.0; });
-  QSkeleton s = code(dims, tube, a + Vec3{ 2, 0, 0 });
+  QSkeleton s = codeFromSeed(dims, tube, a + Vec3{ 2, 0, 0 });
   const std::size_t before = s.pointCount();
   const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(tube), kUnit);
   EXPECT_EQ(r.pathsRemoved, 0);
@@ -188,7 +141,7 @@ TEST(TubeLikenessPruner, KeepsAStraightTubeAndAThinDiagonalTube)
   const Vec3 c{ 4, 4, 4 }, d{ 42, 40, 38 };
   const SparseVesselMask thin =
     makeMask(dims, [&](const Vec3& p) { return segmentDistance(p, c, d) <= 0.9; });
-  QSkeleton t = code(dims, thin, c + Vec3{ 1, 1, 1 });
+  QSkeleton t = codeFromSeed(dims, thin, c + Vec3{ 1, 1, 1 });
   ASSERT_FALSE(t.empty());
   const std::size_t thinBefore = t.pointCount();
   const auto rt = TubeLikenessPruner::prune(t, TubeLikenessPruner::foreground(thin), kUnit);
@@ -206,7 +159,7 @@ TEST(TubeLikenessPruner, KeepsAYBifurcation)
       return segmentDistance(p, root, fork) <= 3.5 || segmentDistance(p, fork, left) <= 2.5 ||
              segmentDistance(p, fork, right) <= 2.5;
     });
-  QSkeleton s = code(dims, y, root + Vec3{ 2, 0, 0 });
+  QSkeleton s = codeFromSeed(dims, y, root + Vec3{ 2, 0, 0 });
   const std::size_t before = s.pointCount();
   const std::size_t paths = s.paths.size();
   ASSERT_GE(paths, 2u);
@@ -223,7 +176,7 @@ TEST(TubeLikenessPruner, RemovesThePathsOfAPlateTouchingATubeAndKeepsTheTube)
   // VesselPhantom's clutter), 36 x 36 voxels wide: its rims are tube-like at their own scale.
   const TubeUnderPlate scene;
   const Vec3 a = scene.a, b = scene.b;
-  QSkeleton s = code(scene.dims, scene.mask, a + Vec3{ 2, 0, 0 });
+  QSkeleton s = codeFromSeed(scene.dims, scene.mask, a + Vec3{ 2, 0, 0 });
   const std::vector<std::array<Vec3, 2>> axis{ { a, b } };
   const double offBefore = shareOff(s, axis, 2.5);
   const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(scene.mask), kUnit);
@@ -307,7 +260,7 @@ TEST(TubeSectionTracker, LeavesATubeAndAYAsTheCoderCentredThem)
       return segmentDistance(p, root, fork) <= 3.5 || segmentDistance(p, fork, left) <= 2.5 ||
              segmentDistance(p, fork, right) <= 2.5;
     });
-  QSkeleton s = code(dims, y, root + Vec3{ 2, 0, 0 });
+  QSkeleton s = codeFromSeed(dims, y, root + Vec3{ 2, 0, 0 });
   const QSkeleton before = s;
   const auto r = TubeSectionTracker::track(s, SectionForeground::of(y), kUnit);
   std::cout << "Y: stretches " << r.stretches << ", re-traced " << r.stretchesTracked << ", cut "
@@ -327,7 +280,7 @@ TEST(TubeSectionTracker, ReTracesATubeWhereAPlateLiesOnIt)
   // along the contact; the tube's own section puts it back.
   const TubeUnderPlate scene;
   const Vec3 a = scene.a, b = scene.b;
-  QSkeleton s = code(scene.dims, scene.mask, a + Vec3{ 2, 0, 0 });
+  QSkeleton s = codeFromSeed(scene.dims, scene.mask, a + Vec3{ 2, 0, 0 });
   const double leanBefore = worstOffAxis(s, a, b, 20.0, 48.0);
   const auto r = RawSkeletonRefinement::apply(s, SectionForeground::of(scene.mask), kUnit, 0.0);
   const double leanAfter = worstOffAxis(s, a, b, 20.0, 48.0);
@@ -350,7 +303,7 @@ TEST(TubeSectionTracker, ReTracesATubePastABallTouchingIt)
   const Vec3 a{ 3, 20, 24 }, b{ 68, 20, 24 }, ball{ 36, 20 + 2.0 - 0.5 + 6.0, 24 };
   const SparseVesselMask mask = makeMask(dims,
     [&](const Vec3& p) { return segmentDistance(p, a, b) <= 2.0 || (p - ball).norm() <= 6.0; });
-  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  QSkeleton s = codeFromSeed(dims, mask, a + Vec3{ 2, 0, 0 });
   const double before = worstOffAxis(s, a, b, 26.0, 46.0);
   const auto r = RawSkeletonRefinement::apply(s, SectionForeground::of(mask), kUnit, 0.0);
   const double after = worstOffAxis(s, a, b, 26.0, 46.0);
@@ -400,7 +353,7 @@ TEST(TubeSectionTracker, KeepsAThinDiagonalTube)
   const Vec3 c{ 4, 4, 4 }, d{ 42, 40, 38 };
   const SparseVesselMask thin =
     makeMask(dims, [&](const Vec3& p) { return segmentDistance(p, c, d) <= 0.9; });
-  QSkeleton t = code(dims, thin, c + Vec3{ 1, 1, 1 });
+  QSkeleton t = codeFromSeed(dims, thin, c + Vec3{ 1, 1, 1 });
   ASSERT_FALSE(t.empty());
   const double before = coverage(t, c, d, 3.0, 1.5);
   const auto r = TubeSectionTracker::track(t, SectionForeground::of(thin), kUnit);
@@ -424,7 +377,7 @@ TEST(TubeSectionTracker, KeepsATubeThatCrossesAThinPlate)
       return segmentDistance(p, a, b) <= 2.0 ||
              (p.x >= 34 && p.x <= 38 && p.y >= 4 && p.y <= 44 && p.z >= 4 && p.z <= 44);
     });
-  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  QSkeleton s = codeFromSeed(dims, mask, a + Vec3{ 2, 0, 0 });
   const auto r = RawSkeletonRefinement::apply(s, SectionForeground::of(mask), kUnit, 0.0);
   std::cout << "tube through a plate: re-traced " << r.tracked.stretchesTracked << ", cut "
             << r.tracked.stretchesCut << ", paths removed " << r.pruned.pathsRemoved << ", covered "
@@ -463,7 +416,7 @@ TEST(TubeLikenessPruner, RemovesTheSpurIntoABallAndKeepsAThinBranchOfTheSameTube
       return segmentDistance(p, a, b) <= 2.5 || (p - ball).norm() <= 6.0 ||
              segmentDistance(p, fork, tip) <= 1.5;
     });
-  QSkeleton s = code(dims, mask, a + Vec3{ 2, 0, 0 });
+  QSkeleton s = codeFromSeed(dims, mask, a + Vec3{ 2, 0, 0 });
   const std::vector<std::array<Vec3, 2>> vessels{ { a, b }, { fork, tip } };
   const double offBefore = shareOff(s, vessels, 2.5);
   const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
@@ -526,7 +479,7 @@ TEST(TubeLikenessPruner, TrimsAThinVesselsEndRunIntoABallAndKeepsATaperedVesselW
   const Vec3 ball{ 51.5, 16, 16 };
   const SparseVesselMask mask = makeMask(dims,
     [&](const Vec3& p) { return segmentDistance(p, a, end) <= 1.0 || (p - ball).norm() <= 4.5; });
-  QSkeleton s = code(dims, mask, a + Vec3{ 1, 0, 0 });
+  QSkeleton s = codeFromSeed(dims, mask, a + Vec3{ 1, 0, 0 });
   const auto deepest = [&](const QSkeleton& q)
   {
     double x = 0.0;
@@ -553,7 +506,7 @@ TEST(TubeLikenessPruner, TrimsAThinVesselsEndRunIntoABallAndKeepsATaperedVesselW
       const double t = std::clamp((p.x - c.x) / (d.x - c.x), 0.0, 1.0);
       return segmentDistance(p, c, d) <= 4.0 - 3.0 * t;
     });
-  QSkeleton t = code(dims, cone, d - Vec3{ 1, 0, 0 }); // rooted at the thin end
+  QSkeleton t = codeFromSeed(dims, cone, d - Vec3{ 1, 0, 0 }); // rooted at the thin end
   const std::size_t coneBefore = t.pointCount();
   const auto rc = TubeLikenessPruner::prune(t, TubeLikenessPruner::foreground(cone), kUnit);
   EXPECT_EQ(rc.blobEndsTrimmed, 0);

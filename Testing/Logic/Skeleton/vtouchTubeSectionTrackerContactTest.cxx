@@ -6,6 +6,8 @@
 // clutter beyond it onto the tube.
 #include "vtouchTubeSectionTracker.h"
 
+#include "vtouchMaskSceneSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,33 +22,8 @@ using namespace vtouch;
 namespace
 {
 using Dims = std::array<std::int64_t, 3>;
-
-SparseVesselMask makeMask(const Dims& dims, const std::function<bool(const Vec3&)>& inside)
-{
-  SparseVesselMask mask(dims);
-  for (std::int64_t k = 0; k < dims[2]; ++k)
-  {
-    for (std::int64_t j = 0; j < dims[1]; ++j)
-    {
-      for (std::int64_t i = 0; i < dims[0]; ++i)
-      {
-        if (inside(Vec3{ double(i), double(j), double(k) }))
-        {
-          mask.set(static_cast<std::uint64_t>(i + dims[0] * (j + dims[1] * k)));
-        }
-      }
-    }
-  }
-  mask.finalize();
-  return mask;
-}
-
-double segmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
-{
-  const Vec3 ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.dot(ab), 0.0, 1.0);
-  return (p - (a + ab * t)).norm();
-}
+using mask_scenes::makeMask;
+using mask_scenes::segmentDistance;
 
 /// Points every voxel of arc length through `polyline`, tangents from neighbours.
 std::vector<SkeletonPoint> drawn(const std::vector<Vec3>& polyline, double radius)

@@ -6,6 +6,8 @@
 #include "vtouchTubeSectionTracker.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
+#include "vtouchMaskSceneSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <itkImage.h>
@@ -22,58 +24,10 @@ using namespace vtouch;
 
 namespace
 {
-using Image = itk::Image<float, 3>;
-using Filter = VoxelCodingSkeletonFilter<Image>;
 using Dims = std::array<std::int64_t, 3>;
-
-SparseVesselMask makeMask(const Dims& dims, const std::function<bool(const Vec3&)>& inside)
-{
-  SparseVesselMask mask(dims);
-  for (std::int64_t k = 0; k < dims[2]; ++k)
-  {
-    for (std::int64_t j = 0; j < dims[1]; ++j)
-    {
-      for (std::int64_t i = 0; i < dims[0]; ++i)
-      {
-        if (inside(Vec3{ double(i), double(j), double(k) }))
-        {
-          mask.set(static_cast<std::uint64_t>(i + dims[0] * (j + dims[1] * k)));
-        }
-      }
-    }
-  }
-  mask.finalize();
-  return mask;
-}
-
-double segmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
-{
-  const Vec3 ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.dot(ab), 0.0, 1.0);
-  return (p - (a + ab * t)).norm();
-}
-
-/// Codes `mask` from the seed voxel (unit spacing, origin 0) as the raw path does.
-QSkeleton code(const Dims& dims, const SparseVesselMask& mask, const Vec3& seed)
-{
-  auto image = Image::New();
-  Image::RegionType region;
-  region.SetSize({ { static_cast<itk::SizeValueType>(dims[0]),
-    static_cast<itk::SizeValueType>(dims[1]),
-    static_cast<itk::SizeValueType>(dims[2]) } });
-  image->SetRegions(region);
-  image->Allocate(true);
-  auto filter = Filter::New();
-  filter->SetInput(image);
-  filter->SetVesselMask(std::make_shared<const SparseVesselMask>(mask));
-  Filter::PointType p;
-  p[0] = seed.x;
-  p[1] = seed.y;
-  p[2] = seed.z;
-  filter->SetSeedPoint(p);
-  filter->Update();
-  return filter->GetSkeleton();
-}
+using mask_scenes::codeFromSeed;
+using mask_scenes::makeMask;
+using mask_scenes::segmentDistance;
 
 /// Every point of `s` inside one of the tubes (axis segment, radius), within `margin`.
 bool insideTheTubes(const QSkeleton& s,
@@ -124,7 +78,7 @@ TEST(TubeSectionTracker, LeavesACleanJunctionOfThickVesselsToTheTrackFromTheOthe
                segmentDistance(p, fork, on) <= 0.9 * rootRadius ||
                segmentDistance(p, fork, branch) <= branchRadius;
       });
-    QSkeleton s = code(dims, y, root + Vec3{ 2 + rootRadius, 0, 0 });
+    QSkeleton s = codeFromSeed(dims, y, root + Vec3{ 2 + rootRadius, 0, 0 });
     const std::size_t pathsBefore = s.paths.size();
     const std::size_t junctionsBefore = s.junctions.size();
     ASSERT_GE(pathsBefore, 2u);
