@@ -5,6 +5,7 @@
 #include "vtouchDistributedCandidateRegion.h"
 #include "vtouchDistributedRegionGrowth.h"
 #include "vtouchInProcessCollectives.h"
+#include "vtouchPieceGrid.h"
 #include "vtouchRawAngiogramTestImages.h"
 #include "vtouchSeedComponentSplit.h"
 #include "vtouchVesselCandidateRegion.h"
@@ -28,58 +29,9 @@ constexpr double kContrast = 900.0; // background 100, vessel 1000
 /// grown by `margin` on shared faces.
 std::vector<PieceLayout> layouts(std::array<std::int64_t, 3> dims, int ranks, int margin)
 {
-  std::vector<std::pair<std::int64_t, std::int64_t>> ySplits{ { 0, dims[1] - 1 } };
-  std::vector<std::pair<std::int64_t, std::int64_t>> zSplits;
-  const auto split = [](std::int64_t points, int n)
-  {
-    std::vector<std::pair<std::int64_t, std::int64_t>> out;
-    const std::int64_t cells = points - 1;
-    for (int p = 0; p < n; ++p)
-    {
-      out.emplace_back(cells * p / n, cells * (p + 1) / n);
-    }
-    return out;
-  };
-  if (ranks == 4)
-  {
-    ySplits = split(dims[1], 2);
-    zSplits = split(dims[2], 2);
-  }
-  else
-  {
-    zSplits = split(dims[2], ranks);
-  }
-  PieceLayout base;
-  base.wholeDims = dims;
-  for (const auto& z : zSplits)
-  {
-    for (const auto& y : ySplits)
-    {
-      VoxelBox held, owned;
-      held.lo = { 0, y.first, z.first };
-      held.hi = { dims[0] - 1, y.second, z.second };
-      owned = held;
-      for (int a = 1; a < 3; ++a)
-      {
-        if (owned.hi[a] < dims[a] - 1)
-        {
-          owned.hi[a] -= 1; // the shared face layer belongs to the upper piece
-          held.hi[a] = std::min(dims[a] - 1, held.hi[a] + margin);
-        }
-        held.lo[a] = std::max<std::int64_t>(0, held.lo[a] - margin);
-      }
-      base.held.push_back(held);
-      base.owned.push_back(owned);
-    }
-  }
-  std::vector<PieceLayout> out;
-  for (int r = 0; r < ranks; ++r)
-  {
-    PieceLayout l = base;
-    l.rank = r;
-    out.push_back(l);
-  }
-  return out;
+  const std::array<int, 3> counts =
+    ranks == 4 ? std::array<int, 3>{ 1, 2, 2 } : std::array<int, 3>{ 1, 1, ranks };
+  return test::layouts(dims, counts, margin);
 }
 
 /// A copy of the held box of `g` (the rank's piece, as a reader would give it).
