@@ -11,6 +11,7 @@
 #include "vtouchVesselCandidateRegion.h"
 
 #include <gtest/gtest.h>
+#include <itkMultiThreaderBase.h>
 
 #include <mutex>
 #include <string>
@@ -23,6 +24,15 @@ using test::InProcessWorld;
 using test::SyntheticAngiogram;
 
 constexpr double kContrast = 900.0; // background 100, vessel 1000
+
+/// ITK's smoothing (the tubularity) runs on the calling thread, each rank's own thread here: ITK's
+/// thread pool is not what these tests are about, and TSan, which does not see into the
+/// uninstrumented ITK library, reports the pool's internal hand-offs (as in the cancellation
+/// tests).
+void itkOnTheCallingThread()
+{
+  itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(1);
+}
 
 /// `ranks` pieces of `dims` as the executive splits by cells (neighbours share a face layer,
 /// owned by the upper piece): slabs along z for 2 and 3, quarters in y and z for 4; held boxes
@@ -271,6 +281,7 @@ std::vector<RankRegion> distributedRegion(const SyntheticAngiogram& g,
 
 TEST(DistributedCandidateRegion, SameRangeAndRegionAsOneProcessOnTwoToFourPieces)
 {
+  itkOnTheCallingThread();
   const SyntheticAngiogram g = treeVolume();
   const std::array<std::int64_t, 3> seed{ 30, 28, 12 };
   VesselCandidateRegion::Settings s;
@@ -314,6 +325,7 @@ TEST(DistributedCandidateRegion, SameRangeAndRegionAsOneProcessOnTwoToFourPieces
 
 TEST(DistributedCandidateRegion, SeedOnBackgroundOrOutsideGivesEveryRankTheMessage)
 {
+  itkOnTheCallingThread();
   const SyntheticAngiogram g = treeVolume();
   VesselCandidateRegion::Settings s;
   s.useSeed = true;
@@ -337,6 +349,7 @@ TEST(DistributedCandidateRegion, SeedOnBackgroundOrOutsideGivesEveryRankTheMessa
 
 TEST(DistributedCandidateRegion, GhostMarginNarrowerThanTheSeedsNeighbourhoodSaysSo)
 {
+  itkOnTheCallingThread();
   const SyntheticAngiogram g = treeVolume();
   // Seeds 3 voxels below and above the face z = 39 (owned by the lower and the upper piece):
   // their 24-voxel cubes reach beyond a 4-voxel margin, on either side.
