@@ -16,8 +16,10 @@
 // the longest path from the seed crosses between owners, plus one.
 #pragma once
 
+#include "vtouchCollectiveRounds.h"
 #include "vtouchPieceLayout.h"
 #include "vtouchRankCollectives.h"
+#include "vtouchRoundsOutcome.h"
 #include "vtouchSparseVesselMask.h"
 
 #include <functional>
@@ -145,15 +147,11 @@ public:
     return seeds;
   }
 
-  struct Outcome
-  {
-    int rounds = 0;                   ///< exchanges made (the same on every rank)
-    std::uint64_t reportedVoxels = 0; ///< voxels this rank reported, all rounds
-    bool settled = false;             ///< false: stopped at the round cap
-    std::string message;              ///< why it did not settle
-  };
+  /// What the rounds did (the same rounds and message on every rank).
+  using Outcome = RoundsOutcome;
 
-  /// Collective: the rounds to the end. `seeds` (local linear indices): the seed on the rank
+  /// Collective: the rounds to the end (CollectiveRounds: stop when no rank reports, the cap,
+  /// a failure on one rank thrown on all). `seeds` (local linear indices): the seed on the rank
   /// that owns it, empty elsewhere (a rank may start from several). `mask` is this piece's grid
   /// (not finalized). `maximumRounds`: the cap (every rank stops at the same round).
   Outcome run(RankCollectives& collectives,
@@ -163,34 +161,21 @@ public:
     const OnJoin& onJoin,
     int maximumRounds = kDefaultMaximumRounds) const
   {
-    Outcome o;
-    std::vector<std::uint64_t> next = seeds;
-    while (true)
-    {
-      const RoundOutput round = this->grow(mask, next, accept, onJoin);
-      o.reportedVoxels += round.reported.size();
-      const std::vector<std::vector<std::int64_t>> all = collectives.allGather(round.reported);
-      ++o.rounds;
-      bool anyReported = false;
-      for (const std::vector<std::int64_t>& r : all)
+    const CollectiveRounds rounds(
+      { "the region growth across the pieces",
+        "a network crossing between pieces that often is not a vessel tree",
+        "set the thresholds, or extract on one rank" },
+      CollectiveRounds::Payload::Indices);
+    return rounds.run(
+      collectives,
+      [&](const CollectiveRounds::Exchange& previous)
       {
-        anyReported = anyReported || !r.empty();
-      }
-      if (!anyReported)
-      {
-        o.settled = true;
-        return o;
-      }
-      if (o.rounds >= maximumRounds)
-      {
-        o.message = "the region growth across the pieces did not settle in " +
-                    std::to_string(maximumRounds) +
-                    " rounds (a network crossing between pieces that often is not a vessel "
-                    "tree): set the thresholds, or extract on one rank";
-        return o;
-      }
-      next = this->received(mask, all);
-    }
+        const std::vector<std::uint64_t> next =
+          previous.rounds == 0 ? seeds : this->received(mask, previous.indices);
+        RoundOutput round = this->grow(mask, next, accept, onJoin);
+        return CollectiveRounds::Report{ std::move(round.reported), {} };
+      },
+      maximumRounds);
   }
 
   const PieceLayout& layout() const { return this->Layout; }

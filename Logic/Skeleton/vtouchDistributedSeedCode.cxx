@@ -1,6 +1,7 @@
 // vtouch::DistributedSeedCode: the SS code's rounds across pieces (see the header for why exact).
 #include "vtouchDistributedSeedCode.h"
 
+#include "vtouchCollectiveRounds.h"
 #include "vtouchSkeletonRunMeter.h"
 #include "vtouchSkeletonSeedCodeStage.h"
 #include "vtouchSkeletonVoxelCodes.h"
@@ -221,38 +222,24 @@ DistributedSeedCode::Outcome DistributedSeedCode::run(RankCollectives& collectiv
                                   " is not a vessel voxel");
     }
   }
-  Outcome o;
-  while (true)
-  {
-    std::vector<std::uint32_t> lowered;
-    p.stage.relax(std::move(sources), lowered);
-    std::vector<std::int64_t> indices;
-    std::vector<double> values;
-    p.report(lowered, indices, values);
-    o.reportedVoxels += indices.size();
-    const std::vector<std::vector<std::int64_t>> allIndices = collectives.allGather(indices);
-    const std::vector<std::vector<double>> allValues = collectives.allGather(values);
-    ++o.rounds;
-    bool anyReported = false;
-    for (const std::vector<std::int64_t>& r : allIndices)
+  const CollectiveRounds rounds(
+    { "the SS code across the pieces",
+      "a network whose shortest paths cross between pieces that often is not a vessel tree",
+      "extract on one rank" },
+    CollectiveRounds::Payload::IndicesAndValues);
+  return rounds.run(
+    collectives,
+    [&p, &sources](const CollectiveRounds::Exchange& previous)
     {
-      anyReported = anyReported || !r.empty();
-    }
-    if (!anyReported)
-    {
-      o.settled = true;
-      return o;
-    }
-    if (o.rounds >= maximumRounds)
-    {
-      o.message = "the SS code across the pieces did not settle in " +
-                  std::to_string(maximumRounds) +
-                  " rounds (a network whose shortest paths cross between pieces that often is "
-                  "not a vessel tree): extract on one rank";
-      return o;
-    }
-    sources = p.received(allIndices, allValues);
-  }
+      std::vector<skeleton::SeedCodeStage::Source> from =
+        previous.rounds == 0 ? std::move(sources) : p.received(previous.indices, previous.values);
+      std::vector<std::uint32_t> lowered;
+      p.stage.relax(std::move(from), lowered);
+      CollectiveRounds::Report report;
+      p.report(lowered, report.indices, report.values);
+      return report;
+    },
+    maximumRounds);
 }
 
 const std::vector<float>& DistributedSeedCode::ss() const

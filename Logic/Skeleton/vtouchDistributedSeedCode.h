@@ -23,6 +23,7 @@
 
 #include "vtouchPieceLayout.h"
 #include "vtouchRankCollectives.h"
+#include "vtouchRoundsOutcome.h"
 #include "vtouchSparseVesselMask.h"
 
 #include <array>
@@ -54,18 +55,14 @@ public:
   DistributedSeedCode(const DistributedSeedCode&) = delete;
   DistributedSeedCode& operator=(const DistributedSeedCode&) = delete;
 
-  struct Outcome
-  {
-    int rounds = 0;                   ///< exchanges made (the same on every rank)
-    std::uint64_t reportedVoxels = 0; ///< voxels this rank reported, all rounds
-    bool settled = false;             ///< false: stopped at the round cap
-    std::string message;              ///< why it did not settle
-  };
+  /// What the rounds did (the same rounds and message on every rank).
+  using Outcome = RoundsOutcome;
 
   /// Collective: the SS code from `roots_Whole` (whole-volume voxel indices, the same list on
   /// every rank, distance 0 each: the seed, or the automatic root) to the end of the rounds.
   /// Every root must be a vessel voxel: otherwise every rank throws std::invalid_argument
   /// together (its owner tells the others in the first exchange). Starts from infinite codes.
+  /// The rounds are CollectiveRounds's (a failure on one rank is thrown on every rank).
   Outcome run(RankCollectives& collectives,
     const std::vector<std::array<std::int64_t, 3>>& roots_Whole,
     int maximumRounds = kDefaultMaximumRounds);
