@@ -161,12 +161,7 @@ public:
     const OnJoin& onJoin,
     int maximumRounds = kDefaultMaximumRounds) const
   {
-    const CollectiveRounds rounds(
-      { "the region growth across the pieces",
-        "a network crossing between pieces that often is not a vessel tree",
-        "set the thresholds, or extract on one rank" },
-      CollectiveRounds::Payload::Indices);
-    return rounds.run(
+    return roundsOfGrowth().run(
       collectives,
       [&](const CollectiveRounds::Exchange& previous)
       {
@@ -179,6 +174,15 @@ public:
   }
 
   const PieceLayout& layout() const { return this->Layout; }
+
+  /// The growth's loop: indices only, the cap's words (the project rule above).
+  static CollectiveRounds roundsOfGrowth()
+  {
+    return CollectiveRounds({ "the region growth across the pieces",
+                              "a network crossing between pieces that often is not a vessel tree",
+                              "set the thresholds, or extract on one rank" },
+      CollectiveRounds::Payload::Indices);
+  }
 
 private:
   std::array<std::int64_t, 3> local(std::uint64_t lin) const

@@ -22,6 +22,17 @@ std::string boxText(const std::array<std::int64_t, 3>& c)
   return "(" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
          ")";
 }
+
+/// The SS code's loop: indices and their distances, the cap's words (the project rule in the
+/// header).
+CollectiveRounds roundsOfSsCode()
+{
+  return CollectiveRounds({ "the SS code across the pieces",
+                            "a network whose shortest paths cross between pieces that often is "
+                            "not a vessel tree",
+                            "extract on one rank" },
+    CollectiveRounds::Payload::IndicesAndValues);
+}
 } // namespace
 
 /// The piece's grid, codes and stage (SeedCodeStage on the held box, no progress of its own).
@@ -222,12 +233,7 @@ DistributedSeedCode::Outcome DistributedSeedCode::run(RankCollectives& collectiv
                                   " is not a vessel voxel");
     }
   }
-  const CollectiveRounds rounds(
-    { "the SS code across the pieces",
-      "a network whose shortest paths cross between pieces that often is not a vessel tree",
-      "extract on one rank" },
-    CollectiveRounds::Payload::IndicesAndValues);
-  return rounds.run(
+  return roundsOfSsCode().run(
     collectives,
     [&p, &sources](const CollectiveRounds::Exchange& previous)
     {

@@ -34,12 +34,14 @@ struct RankRun
   bool logicError = false;   ///< another std::logic_error (the driver's check of a report)
 };
 
-/// Runs `rounds` on every rank of `world` with `step(rank, previous, calls)`; each rank's result.
+/// Runs rounds of `payload` on every rank of `world` with `step(rank, previous)`; each rank's
+/// result.
 std::vector<RankRun> runAll(InProcessWorld& world,
-  const CollectiveRounds& rounds,
+  CollectiveRounds::Payload payload,
   const std::function<CollectiveRounds::Report(int, const CollectiveRounds::Exchange&)>& step,
   int maximumRounds)
 {
+  const CollectiveRounds rounds(kWords, payload);
   std::vector<RankRun> runs(static_cast<std::size_t>(world.ranks()));
   world.run(
     [&](int rank, RankCollectives& collectives)
@@ -86,7 +88,7 @@ TEST(CollectiveRounds, SettlesInOneExchangeWhenNobodyReports)
     InProcessWorld world(3);
     const std::vector<RankRun> runs = runAll(
       world,
-      CollectiveRounds(kWords, payload),
+      payload,
       [](int, const CollectiveRounds::Exchange&) { return CollectiveRounds::Report(); },
       1000);
     for (const RankRun& r : runs)
@@ -112,7 +114,7 @@ TEST(CollectiveRounds, HandsEveryRanksReportToEveryRanksNextStep)
   InProcessWorld world(kRanks);
   const std::vector<RankRun> runs = runAll(
     world,
-    CollectiveRounds(kWords, CollectiveRounds::Payload::IndicesAndValues),
+    CollectiveRounds::Payload::IndicesAndValues,
     [](int rank, const CollectiveRounds::Exchange& previous)
     {
       CollectiveRounds::Report report;
@@ -155,10 +157,9 @@ TEST(CollectiveRounds, CapStopsEveryRankAtTheSameRoundWithTheSameMessage)
 {
   // Only rank 1 ever reports; the others must still stop with it, at the cap.
   InProcessWorld world(3);
-  const CollectiveRounds rounds(kWords, CollectiveRounds::Payload::Indices);
   const std::vector<RankRun> runs = runAll(
     world,
-    rounds,
+    CollectiveRounds::Payload::Indices,
     [](int rank, const CollectiveRounds::Exchange&)
     {
       CollectiveRounds::Report report;
@@ -171,7 +172,7 @@ TEST(CollectiveRounds, CapStopsEveryRankAtTheSameRoundWithTheSameMessage)
     5);
   const std::string expected = "the test's relay across the ranks did not settle in 5 rounds (a "
                                "relay that long is a loop): fix the test";
-  EXPECT_EQ(rounds.capMessage(5), expected);
+  EXPECT_EQ(CollectiveRounds(kWords, CollectiveRounds::Payload::Indices).capMessage(5), expected);
   for (std::size_t r = 0; r < runs.size(); ++r)
   {
     EXPECT_FALSE(runs[r].outcome.settled);
@@ -190,7 +191,7 @@ TEST(CollectiveRounds, StepFailingOnOneRankThrowsOnEveryRankInThatRound)
   InProcessWorld world(3);
   const std::vector<RankRun> runs = runAll(
     world,
-    CollectiveRounds(kWords, CollectiveRounds::Payload::IndicesAndValues),
+    CollectiveRounds::Payload::IndicesAndValues,
     [](int rank, const CollectiveRounds::Exchange& previous)
     {
       if (rank == 2 && previous.rounds == 2)
@@ -221,16 +222,15 @@ TEST(CollectiveRounds, StepFailingOnOneRankThrowsOnEveryRankInThatRound)
 
 TEST(CollectiveRounds, ReportWithValuesNotMatchingItsIndicesFailsOnEveryRank)
 {
+  // Rank 1 reports two indices with one distance; rank 0 a good report.
+  const auto twoIndicesOneValue = [](int rank, const CollectiveRounds::Exchange&)
+  {
+    return rank == 1 ? CollectiveRounds::Report{ { 3, 4 }, { 1.0 } }
+                     : CollectiveRounds::Report{ { 5 }, { 2.0 } };
+  };
   InProcessWorld world(2);
-  const std::vector<RankRun> runs = runAll(
-    world,
-    CollectiveRounds(kWords, CollectiveRounds::Payload::IndicesAndValues),
-    [](int rank, const CollectiveRounds::Exchange&)
-    {
-      return rank == 1 ? CollectiveRounds::Report{ { 3, 4 }, { 1.0 } }
-                       : CollectiveRounds::Report{ { 5 }, { 2.0 } };
-    },
-    1000);
+  const std::vector<RankRun> runs =
+    runAll(world, CollectiveRounds::Payload::IndicesAndValues, twoIndicesOneValue, 1000);
   EXPECT_TRUE(runs[1].logicError) << "the rank whose report is wrong throws the check's error";
   EXPECT_TRUE(runs[0].runtimeError);
   EXPECT_NE(runs[0].error.find("rank 1 failed in round 1: CollectiveRounds (the test's relay "
