@@ -14,6 +14,7 @@
 #include <itkMultiThreaderBase.h>
 
 #include <mutex>
+#include <stdexcept>
 #include <string>
 
 namespace vtouch
@@ -208,6 +209,53 @@ TEST(DistributedRegionGrowth, RoundCapStopsEveryRankWithAMessage)
     });
   EXPECT_NE(messages[0].find("did not settle in 2 rounds"), std::string::npos) << messages[0];
   EXPECT_EQ(messages[0], messages[1]);
+}
+
+TEST(DistributedRegionGrowth, AcceptThrowingOnOneRankThrowsOnEveryRank)
+{
+  // The upper rank's rule fails the first time it is asked (round 2, once the lower rank has
+  // reported the U's first leg): the lower rank must not wait for it in the next exchange
+  // (CollectiveRounds' shared failure; InProcessWorld would fail after 60 s instead).
+  const SyntheticAngiogram g = uVolume();
+  const std::vector<PieceLayout> pieces = layouts(g.dims, 2, 2);
+  std::vector<std::string> thrown(2);
+  InProcessWorld(2).run(
+    [&](int r, RankCollectives& c)
+    {
+      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
+      const std::vector<float> voxels = pieceOf(g, l);
+      const VolumeView<float> v = viewOf(voxels, l);
+      SparseVesselMask mask(v.dims);
+      const auto q = l.toLocal({ 6, 12, 8 });
+      const std::vector<std::uint64_t> seeds =
+        r == 0 ? std::vector<std::uint64_t>{ v.linear(q[0], q[1], q[2]) }
+               : std::vector<std::uint64_t>{};
+      const DistributedRegionGrowth::Accept accept = [&v, r](std::uint64_t lin)
+      {
+        if (r == 1)
+        {
+          throw std::out_of_range("the upper piece's voxels are gone");
+        }
+        return v.voxels[lin] >= 550.0F;
+      };
+      try
+      {
+        DistributedRegionGrowth(l).run(c, mask, seeds, accept, DistributedRegionGrowth::OnJoin());
+        thrown[static_cast<std::size_t>(r)] = "nothing";
+      }
+      catch (const std::out_of_range& e)
+      {
+        thrown[static_cast<std::size_t>(r)] = std::string("own: ") + e.what();
+      }
+      catch (const std::runtime_error& e)
+      {
+        thrown[static_cast<std::size_t>(r)] = e.what();
+      }
+    });
+  EXPECT_EQ(thrown[1], "own: the upper piece's voxels are gone");
+  EXPECT_EQ(thrown[0],
+    "the region growth across the pieces: rank 1 failed in round 2: the upper piece's voxels "
+    "are gone");
 }
 
 /// A raw angiogram with a bifurcating tree crossing the pieces' faces, a plate touching one
