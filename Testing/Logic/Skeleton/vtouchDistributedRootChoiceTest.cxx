@@ -336,6 +336,29 @@ TEST(DistributedRootChoice, TheRoundCapStopsEveryRankWithTheSameMessage)
   }
 }
 
+/// The SS code of `mask` (1 mm voxels) from `root`, and the stage that computed it.
+struct RodCode
+{
+  explicit RodCode(const SparseVesselMask& m, const Index& root)
+    : grid(m, { 1, 1, 1 }, 0.0)
+    , meter(none)
+    , stage(grid, meter, codes, 0.0)
+  {
+    codes.ss.assign(m.vesselCount(), skeleton::VoxelCodes::kInf);
+    codes.flags.assign(m.vesselCount(), 0);
+    stage.propagate({ static_cast<std::uint32_t>(grid.linOf(root[0], root[1], root[2])) });
+  }
+  float ssAt(const Index& v) const
+  {
+    return codes.ss[grid.mask.rank(grid.linOf(v[0], v[1], v[2]))];
+  }
+  skeleton::VoxelGrid grid;
+  skeleton::VoxelCodes codes;
+  std::function<bool(double)> none;
+  skeleton::RunMeter meter;
+  skeleton::SeedCodeStage stage;
+};
+
 TEST(SeedCodeStageFarVoxel, IsTheLargestIndexInTheLastBucket)
 {
   // A rod one voxel thick along x, x = 1 .. 20, with one diagonal step at its left end to
@@ -348,21 +371,30 @@ TEST(SeedCodeStageFarVoxel, IsTheLargestIndexInTheLastBucket)
       return (p[1] == 1.0 && p[2] == 1.0 && p[0] >= 1.0) ||
              (p[0] == 0.0 && p[1] == 0.0 && p[2] == 1.0);
     });
-  skeleton::VoxelGrid grid(rod, { 1, 1, 1 }, 0.0);
-  skeleton::VoxelCodes codes;
-  codes.ss.assign(rod.vesselCount(), skeleton::VoxelCodes::kInf);
-  codes.flags.assign(rod.vesselCount(), 0);
-  const std::function<bool(double)> none;
-  skeleton::RunMeter meter(none);
-  skeleton::SeedCodeStage stage(grid, meter, codes, 0.0);
-  stage.propagate({ static_cast<std::uint32_t>(grid.linOf(10, 1, 1)) });
-  ASSERT_GT(codes.ss[rod.rank(grid.linOf(0, 0, 1))], codes.ss[rod.rank(grid.linOf(20, 1, 1))]);
-  EXPECT_EQ(stage.farVoxel(), grid.linOf(20, 1, 1));
+  RodCode code(rod, { 10, 1, 1 });
+  ASSERT_GT(code.ssAt({ 0, 0, 1 }), code.ssAt({ 20, 1, 1 }));
+  EXPECT_EQ(code.stage.farVoxel(), code.grid.linOf(20, 1, 1));
   // The end cap: the voxels within one band (1 mm) of the far one, (19..20, 1, 1); the voxel at
   // its centroid (x = 19.5, rounded away from zero).
-  const std::vector<std::uint32_t> cap = stage.extremityRegion();
+  const std::vector<std::uint32_t> cap = code.stage.extremityRegion();
   ASSERT_EQ(cap.size(), 1U);
-  EXPECT_EQ(cap.front(), grid.linOf(20, 1, 1));
+  EXPECT_EQ(cap.front(), code.grid.linOf(20, 1, 1));
+}
+
+TEST(SeedCodeStageFarVoxel, IsNotTheLastVoxelTheQueuePopped)
+{
+  // A rod x = 0 .. 19 ending in a 3 x 3 plate at x = 20, coded from (0, 1, 1): the plate's nine
+  // voxels (20 to 20.73 mm) share the last bucket; the queue pops them in the order they were
+  // pushed from (19, 1, 1), last in first out, not by index. The far voxel is the plate's last
+  // in scan order, (20, 2, 2); the cap (the plate) is centred on the rod.
+  const SparseVesselMask rod = skeleton::test::makeMask(
+    { 21, 3, 3 }, [](const Point_mm& p) { return (p[1] == 1.0 && p[2] == 1.0) || p[0] == 20.0; });
+  RodCode code(rod, { 0, 1, 1 });
+  EXPECT_NE(code.codes.order.back(), code.grid.linOf(20, 2, 2)); // the rule is not the queue's
+  EXPECT_EQ(code.stage.farVoxel(), code.grid.linOf(20, 2, 2));
+  const std::vector<std::uint32_t> cap = code.stage.extremityRegion();
+  ASSERT_EQ(cap.size(), 1U);
+  EXPECT_EQ(cap.front(), code.grid.linOf(20, 1, 1));
 }
 
 } // namespace
