@@ -251,6 +251,49 @@ TEST(DistributedRootChoice, EveryRankGetsTheSingleRunsRootOnLargeTreesExploredOn
   EXPECT_GT(fromBlocks, 0); // the exploration on blocks ran and its root was kept
 }
 
+TEST(DistributedRootChoice, EveryComponentIsRootedAsTheSingleRunRootsItAmongSpecks)
+{
+  // Two vessels apart (a straight tube and a bent one, both across the pieces' faces) and 40
+  // specks of one voxel scattered (seeded): the single run codes the two in scan order and skips
+  // the specks; so must every rank, whatever the split.
+  const Dims dims{ 40, 36, 44 };
+  std::mt19937 random(1919);
+  std::vector<Point_mm> specks;
+  for (int s = 0; s < 40; ++s)
+  {
+    specks.push_back({ static_cast<double>(random() % 40),
+      static_cast<double>(random() % 36),
+      static_cast<double>(random() % 44) });
+  }
+  const SparseVesselMask mask = skeleton::test::makeMask(dims,
+    [&](const Point_mm& p)
+    {
+      using skeleton::test::distanceToSegment;
+      if (distanceToSegment(p, { 8, 8, 3 }, { 8, 30, 40 }) <= 2.5 ||
+          std::min(distanceToSegment(p, { 34, 4, 5 }, { 26, 20, 22 }),
+            distanceToSegment(p, { 26, 20, 22 }, { 33, 30, 40 })) <= 2.0)
+      {
+        return true;
+      }
+      return std::find(specks.begin(), specks.end(), p) != specks.end();
+    });
+  for (const std::array<double, 3>& spacing_mm :
+    { std::array<double, 3>{ 1, 1, 1 }, std::array<double, 3>{ 0.8, 1.1, 0.95 } })
+  {
+    const SingleRun single = singleRun(mask, spacing_mm);
+    ASSERT_EQ(single.roots.size(), 2U);
+    for (const std::array<int, 3>& counts : kSplits)
+    {
+      SCOPED_TRACE("split " + std::to_string(counts[0]) + std::to_string(counts[1]) +
+                   std::to_string(counts[2]) + ", spacing x " + std::to_string(spacing_mm[0]));
+      const std::vector<RankResult> results =
+        runDistributed(mask, &single, spacing_mm, layouts(dims, counts, 2));
+      expectTheSingleRuns(results, single);
+      EXPECT_GT(results.front().result.propagations, 30); // the specks were explored, one each
+    }
+  }
+}
+
 TEST(DistributedRootChoice, AnEndCapLeavingItsPieceAndComingBackIsGrownInRounds)
 {
   // A tube up the left piece, across the face x = 15 into the right one, up, and back into the
