@@ -2,6 +2,7 @@
 #include "vtouchSkeletonSeedCodeStage.h"
 
 #include "vtouchBucketQueue.h"
+#include "vtouchSkeletonEndCapRule.h"
 
 #include <algorithm>
 #include <cmath>
@@ -190,9 +191,25 @@ void SeedCodeStage::reset()
   }
 }
 
+std::uint32_t SeedCodeStage::farVoxel() const
+{
+  std::uint32_t far = codes.order.front();
+  std::uint64_t farB = farBucket(codes.ss[grid.mask.rank(far)], grid.minSpacing);
+  for (const std::uint32_t lin : codes.order)
+  {
+    const std::uint64_t b = farBucket(codes.ss[grid.mask.rank(lin)], grid.minSpacing);
+    if (fartherVoxel(b, lin, farB, far))
+    {
+      far = lin;
+      farB = b;
+    }
+  }
+  return far;
+}
+
 std::vector<std::uint32_t> SeedCodeStage::extremityRegion()
 {
-  const std::uint32_t far = codes.order.back();
+  const std::uint32_t far = farVoxel();
   const float threshold = codes.ss[grid.mask.rank(far)] - static_cast<float>(grid.bandWidth);
   std::vector<std::uint32_t> region{ far };
   codes.flags[grid.mask.rank(far)] |= kRegion;
@@ -208,18 +225,22 @@ std::vector<std::uint32_t> SeedCodeStage::extremityRegion()
         }
       });
   }
-  double sum[3] = { 0.0, 0.0, 0.0 };
+  std::array<std::int64_t, 3> sum{ 0, 0, 0 };
   for (std::uint32_t lin : region)
   {
     codes.flags[grid.mask.rank(lin)] &= static_cast<std::uint8_t>(~kRegion);
-    const std::array<double, 3> c = grid.centerOf(lin);
+    std::int64_t c[3];
+    grid.coords(lin, c);
     for (int a = 0; a < 3; ++a)
     {
-      sum[a] += c[a] / static_cast<double>(region.size());
+      sum[a] += c[a];
     }
   }
   // One root voxel at the centre of the end cap when it is vessel: every trace converges there.
-  const std::uint64_t centre = grid.nearestVoxel({ sum[0], sum[1], sum[2] });
+  // Integer sums (project rule, issue 19 item 2): the distributed run adds the pieces' sums.
+  const std::array<std::int64_t, 3> v =
+    nearestIndex(indexCentroid(sum, region.size()), { grid.nx, grid.ny, grid.nz });
+  const std::uint64_t centre = grid.linOf(v[0], v[1], v[2]);
   if (grid.mask.test(centre))
   {
     return { static_cast<std::uint32_t>(centre) };
@@ -229,9 +250,7 @@ std::vector<std::uint32_t> SeedCodeStage::extremityRegion()
 
 std::uint32_t SeedCodeStage::coarseExtremity(std::uint32_t lin)
 {
-  // Below this the exact exploration costs little; the block mask would not pay for itself.
-  constexpr std::uint64_t kCoarseFrom = std::uint64_t{ 1 } << 17;
-  if (grid.mask.vesselCount() < kCoarseFrom || grid.nx < 2 || grid.ny < 2 || grid.nz < 2)
+  if (grid.mask.vesselCount() < kCoarseFromVoxels || grid.nx < 2 || grid.ny < 2 || grid.nz < 2)
   {
     return kNoVoxel;
   }
@@ -262,36 +281,28 @@ std::uint32_t SeedCodeStage::coarseExtremity(std::uint32_t lin)
   {
     coarse.flags[coarseGrid.mask.rank(b)] |= kComponent;
   }
-  double centre[3] = { 0.0, 0.0, 0.0 }; // in fine voxel indices; a block's centre is 2 I + 0.5
+  std::array<std::int64_t, 3> blockSum{ 0, 0, 0 };
   for (const std::uint32_t b : region)
   {
     std::int64_t bc[3];
     coarseGrid.coords(b, bc);
     for (int a = 0; a < 3; ++a)
     {
-      centre[a] += (2.0 * static_cast<double>(bc[a]) + 0.5) / static_cast<double>(region.size());
+      blockSum[a] += bc[a];
     }
   }
+  const std::array<double, 3> centre = blockCentre(blockSum, region.size()); // fine indices
   explorer->stage.reset();
   // The vessel voxel nearest the end cap's centre, within the blocks around it.
   std::uint32_t best = kNoVoxel;
   double bestDistance = std::numeric_limits<double>::infinity();
-  const std::int64_t dims[3] = { grid.nx, grid.ny, grid.nz };
-  std::int64_t lo[3], hi[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    lo[a] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(centre[a])) - 2);
-    hi[a] =
-      std::min<std::int64_t>(dims[a] - 1, static_cast<std::int64_t>(std::ceil(centre[a])) + 2);
-  }
-  for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
-    for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
-      for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+  const CentreWindow window(centre, { grid.nx, grid.ny, grid.nz });
+  for (std::int64_t k = window.lo[2]; k <= window.hi[2]; ++k)
+    for (std::int64_t j = window.lo[1]; j <= window.hi[1]; ++j)
+      for (std::int64_t i = window.lo[0]; i <= window.hi[0]; ++i)
       {
         const auto v = static_cast<std::uint64_t>(i + grid.nx * (j + grid.ny * k));
-        const double d = (i - centre[0]) * (i - centre[0]) * grid.sp[0] * grid.sp[0] +
-                         (j - centre[1]) * (j - centre[1]) * grid.sp[1] * grid.sp[1] +
-                         (k - centre[2]) * (k - centre[2]) * grid.sp[2] * grid.sp[2];
+        const double d = CentreWindow::distance2_mm2(centre, grid.sp, i, j, k);
         if (d < bestDistance && grid.mask.test(v))
         {
           bestDistance = d;

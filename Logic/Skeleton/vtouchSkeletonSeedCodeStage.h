@@ -55,9 +55,15 @@ public:
   /// Undoes the last propagation (its voxels back to infinite SS, kDone clear).
   void reset();
 
+  /// The far end of the last propagation: in its last SS bucket (as wide as the smallest voxel
+  /// side), the voxel with the largest linear index (project rule, vtouchSkeletonEndCapRule.h:
+  /// a distributed run finds the same).
+  std::uint32_t farVoxel() const;
+
   /// The automatic root: the cluster of voxels farthest from an arbitrary start (double
-  /// propagation), reduced to the voxel at its centroid (the end cap is centred on the axis).
-  /// Reads the last propagation.
+  /// propagation: the voxels within one band of farVoxel()'s SS connected to it), reduced to the
+  /// vessel voxel nearest its centroid (integer index sums; the end cap is centred on the axis),
+  /// or the whole cluster when that voxel is background. Reads the last propagation.
   std::vector<std::uint32_t> extremityRegion();
 
   /// The exploratory half of the double propagation on the 2x2x2 block mask (about a sixth of
@@ -67,6 +73,9 @@ public:
   /// tree's root is moved to its thickest end afterwards anyway.
   std::uint32_t coarseExtremity(std::uint32_t lin);
   static constexpr std::uint32_t kNoVoxel = 0xFFFFFFFFU;
+  /// coarseExtremity() explores on blocks from this many vessel voxels in the mask (below, the
+  /// exact search costs little and the block mask would not pay for itself).
+  static constexpr std::uint64_t kCoarseFromVoxels = std::uint64_t{ 1 } << 17;
 
   /// The largest bucket queue so far, entries.
   std::size_t peakQueue() const { return this->peakQueueEntries; }

@@ -114,6 +114,8 @@ void VoxelCoder::Impl::handleComponent(const std::vector<std::uint32_t>& sources
   {
     if (const std::optional<std::uint32_t> root = clusterStage.thickerRoot())
     {
+      draft.skeleton.roots.back().moved = true;
+      draft.skeleton.roots.back().thickest = grid.voxelArray(*root);
       seedCode.reset();
       seedCode.propagate({ *root });
       clusterStage.build();
@@ -189,6 +191,7 @@ RawSkeleton VoxelCoder::Impl::run()
               seedCode.reset();
               return;
             }
+            out.roots.push_back({ { grid.voxelArray(root) } });
             handleComponent({}, true);
             markComponent();
             return;
@@ -204,6 +207,11 @@ RawSkeleton VoxelCoder::Impl::run()
         }
         const std::vector<std::uint32_t> region = seedCode.extremityRegion();
         seedCode.reset();
+        out.roots.emplace_back();
+        for (const std::uint32_t v : region)
+        {
+          out.roots.back().extremity.push_back(grid.voxelArray(v));
+        }
         handleComponent(region, true);
         markComponent();
       });

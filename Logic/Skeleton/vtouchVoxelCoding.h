@@ -62,6 +62,16 @@ struct RawJunction
   int parentPoint = -1;
 };
 
+/// Where a component's SS code was rooted when no seed was given (the automatic root).
+struct RawComponentRoot
+{
+  /// The voxel(s) the SS code was first propagated from: the end cap the double propagation
+  /// found (its centre voxel, or the cap's voxels when that centre is background).
+  std::vector<std::array<std::int64_t, 3>> extremity;
+  bool moved = false;                     ///< re-rooted at the thickest end (then `thickest`)
+  std::array<std::int64_t, 3> thickest{}; ///< the thickest end's root voxel, when moved
+};
+
 struct RawSkeleton
 {
   std::vector<RawSkeletonPath> paths;
@@ -70,6 +80,8 @@ struct RawSkeleton
   int components = 0;        ///< components skeletonized
   int loops = 0;             ///< loop closures found
   std::size_t peakBytes = 0; ///< bookkeeping of the largest arrays (mask excluded)
+  /// Per component coded from an automatic root (no seed, no global field), in scan order.
+  std::vector<RawComponentRoot> roots;
   /// Wall time per stage (name, seconds), accumulated over components: for profiling.
   std::vector<std::pair<std::string, double>> stageSeconds;
 };
