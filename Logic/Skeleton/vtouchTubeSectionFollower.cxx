@@ -115,7 +115,8 @@ bool centreOnTube(const SectionSampler& sampler,
   const Vec3& tangent,
   double r,
   const Settings& s,
-  Vec3& centre)
+  Vec3& centre,
+  bool* touched)
 {
   Vec3 t, u, v;
   SectionSampler::sectionBasis(tangent, t, u, v);
@@ -218,6 +219,10 @@ bool centreOnTube(const SectionSampler& sampler,
     return false;
   }
   centre = c;
+  if (touched)
+  {
+    *touched = arcCount(runsOn) > 0;
+  }
   return true;
 }
 
@@ -259,12 +264,17 @@ Track follow(const SectionSampler& sampler,
   const double coastLimit = std::max(1.0, r) * voxel;
   double coasted = 0.0;
   std::size_t lastCentred = 0;
+  // Confirmation (confirmedPart): after a coast outside a junction's zone, the centres are the
+  // tube's for sure only from an untouched section on; a coast that began in a junction's zone
+  // (the track crossing the junction) loses nothing.
+  bool sure = true, coastFromZone = false;
   double lengthAtLastCentred = 0.0;
   while (length < maximumLength_mm)
   {
     const Vec3 predicted = c + t * step;
     Vec3 next;
-    const bool fitted = centreOnTube(sampler, predicted, t, r, s, next) &&
+    bool touched = false;
+    const bool fitted = centreOnTube(sampler, predicted, t, r, s, next, &touched) &&
                         (next - predicted).norm() <= (0.5 * r + s.maximumShift_voxels) * voxel;
     if (!fitted)
     {
@@ -276,6 +286,12 @@ Track follow(const SectionSampler& sampler,
         break;
       }
       coasted = inZone(zones, predicted) ? 0.0 : coasted + step;
+      coastFromZone = coastFromZone || inZone(zones, predicted);
+      if (sure && !coastFromZone)
+      {
+        sure = false;
+        track.confirmed = lastCentred + 1;
+      }
       next = predicted;
     }
     else
@@ -303,6 +319,12 @@ Track follow(const SectionSampler& sampler,
     {
       lastCentred = track.centres.size() - 1;
       lengthAtLastCentred = length;
+      coastFromZone = false;
+      sure = sure || !touched;
+      if (sure)
+      {
+        track.confirmed = track.centres.size();
+      }
     }
     double best = reach;
     for (const Target& target : targets)
@@ -324,7 +346,16 @@ Track follow(const SectionSampler& sampler,
     track.centres.resize(lastCentred + 1); // ran out of length while coasting
   }
   (void)length;
+  track.confirmed = std::min(track.confirmed, track.centres.size());
   return track;
+}
+
+Track confirmedPart(const Track& track)
+{
+  Track part = track;
+  part.centres.resize(std::max<std::size_t>(1, std::min(track.confirmed, track.centres.size())));
+  part.confirmed = part.centres.size();
+  return part;
 }
 
 /// Points every voxel along the polyline from `from` through `via` to `to` (both ends excluded;

@@ -38,6 +38,10 @@ struct Track
 {
   std::vector<Vec3> centres; ///< from the start's centre on (the start itself first)
   int hit = -1;              ///< the target reached, or -1
+  /// How many of the first centres are the tube's for sure (all of them unless the track lost
+  /// the tube outside a junction's zone and found only touched sections after it: see
+  /// confirmedPart).
+  std::size_t confirmed = 1;
 };
 
 /// Ray lengths (voxels) of the section through `c` in the plane (u, v): the foreground's run from
@@ -57,12 +61,15 @@ double lowerQuartile(std::vector<double> x);
 /// radius r fitted to the ends of the wall rays (ending within r + margin), re-taken from the new
 /// centre up to four times. False when the section from the centre is not a tube touched at most
 /// on one side (see vtouchTubeSectionTracker.h).
+/// `touched` (optional): whether, from the centre, rays run on beyond the wall (one thing touches
+/// the tube).
 bool centreOnTube(const SectionSampler& sampler,
   const Vec3& p,
   const Vec3& tangent,
   double r,
   const Settings& s,
-  Vec3& centre);
+  Vec3& centre,
+  bool* touched = nullptr);
 
 bool inZone(const std::vector<Zone>& zones, const Vec3& p);
 
@@ -76,6 +83,15 @@ Track follow(const SectionSampler& sampler,
   const std::vector<Zone>& zones,
   double maximumLength_mm,
   const Settings& s);
+
+/// The part of a track that is the tube's for sure, where the track is kept as the tube's end (a
+/// free end re-traced, a track kept beside a cut): up to the last centre before the track lost
+/// the tube outside a junction's zone (coasted across a gap, or a section no tube's), when after
+/// that it re-centred only on sections that something touches. Past a vessel's end a circle of
+/// the thin tube's radius fits the edge of the clutter beyond (a strip, a plate) as well as the
+/// vessel; only a section that nothing touches says the tube goes on across the gap (a thin
+/// vessel's gap of one voxel). Project rule, issue 16 item 5 (Docs/CENTERLINES.md, step 4).
+Track confirmedPart(const Track& track);
 
 /// Points every voxel along the polyline from `from` through `via` to `to` (both ends excluded;
 /// `to` may be omitted: then up to the polyline's last point, included).

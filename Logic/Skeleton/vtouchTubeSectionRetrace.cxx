@@ -280,7 +280,7 @@ void retracePath(QSkeleton& skeleton,
           zones,
           maxLength,
           s);
-        forwardTrack = tr;
+        forwardTrack = confirmedPart(tr); // kept beside a cut only as far as it is sure
         if (tr.hit >= 0)
         {
           const Vec3 to = path.points[static_cast<std::size_t>(tr.hit)].position_World_mm;
@@ -325,7 +325,7 @@ void retracePath(QSkeleton& skeleton,
           zones,
           maxLength,
           s);
-        backwardTrack = tr;
+        backwardTrack = confirmedPart(tr);
         if (tr.hit >= 0)
         {
           const Vec3 to = path.points[static_cast<std::size_t>(b)].position_World_mm;
@@ -361,7 +361,7 @@ void retracePath(QSkeleton& skeleton,
       const double r = tubeRadius(a, n - 1);
       if (std::isfinite(r) && r > 0.0)
       {
-        const Track tr = follow(sampler,
+        const Track full = follow(sampler,
           path.points[static_cast<std::size_t>(a)].position_World_mm,
           heading(a, +1),
           r,
@@ -369,7 +369,11 @@ void retracePath(QSkeleton& skeleton,
           zones,
           stretchLength + voxel,
           s);
-        if (tr.centres.size() > 1)
+        // A free end: as far as the tube goes for sure (only the anchor when the track lost the
+        // tube and found only touched sections after it: the end is trimmed there).
+        const Track tr = confirmedPart(full);
+        result.freeEndsEndedWhereTubeLost += tr.centres.size() < full.centres.size() ? 1 : 0;
+        if (full.centres.size() > 1)
         {
           std::vector<Vec3> via(tr.centres.begin() + 1, tr.centres.end());
           const double R = path.points[static_cast<std::size_t>(a)].radius_mm;
@@ -391,7 +395,7 @@ void retracePath(QSkeleton& skeleton,
       const double r = tubeRadius(b, 0);
       if (std::isfinite(r) && r > 0.0)
       {
-        const Track tr = follow(sampler,
+        const Track full = follow(sampler,
           path.points[static_cast<std::size_t>(b)].position_World_mm,
           heading(b, -1),
           r,
@@ -399,7 +403,9 @@ void retracePath(QSkeleton& skeleton,
           zones,
           stretchLength + voxel,
           s);
-        if (tr.centres.size() > 1)
+        const Track tr = confirmedPart(full);
+        result.freeEndsEndedWhereTubeLost += tr.centres.size() < full.centres.size() ? 1 : 0;
+        if (full.centres.size() > 1)
         {
           std::vector<Vec3> via(tr.centres.begin() + 1, tr.centres.end());
           std::vector<Vec3> pts = resampled(

@@ -44,6 +44,11 @@
 //    from the clean side replaces the stretch as far as the tube goes (at most the stretch's
 //    length + 1 voxel); a path joined to that stretch farther than 2 (r + 1) voxels from the
 //    track joined the clutter beyond the tube's end and is detached, not moved onto the track.
+//    Where such a track (or one kept beside a cut, 4) lost the tube outside a junction's zone
+//    (coasted) and then re-centred only on sections that something touches, what it followed
+//    after the coast is not kept: past a vessel's tip a circle of the thin tube's radius fits the
+//    edge of the clutter beyond as well as the vessel; only an untouched section says the tube
+//    goes on (the free end is trimmed back to the last centre before the coast).
 //    Clutter widens a section: s wider than the tube r the track comes from, s > r + max(1 voxel,
 //    r / 2) and s >= 1.5 voxels (the cut's blob criterion, relative to the tube: a thick
 //    vessel's own sections are all wider than 1.5 voxels). A lone clean point (its judged
@@ -125,6 +130,8 @@ public:
     int junctionsDetached = 0;   ///< paths joined inside a removed stretch (their end is free now)
     int loneSectionsCrossed = 0; ///< lone clean sections amid clutter a stretch ran on across
     int stretchesEndedAtJunction = 0; ///< re-traced up to a junction (no clean point was met)
+    /// Free ends whose track was cut back to where it lost the tube (only touched sections after)
+    int freeEndsEndedWhereTubeLost = 0;
     std::size_t pointsJudged = 0;
     std::size_t pointsNotClean = 0;
   };

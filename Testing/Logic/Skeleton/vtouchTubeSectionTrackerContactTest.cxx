@@ -279,3 +279,73 @@ TEST(TubeSectionTracker, DetachesAPathJoinedToClutterPastAVesselsEndAndKeepsAThi
   EXPECT_LE(pointsOff({ { thin }, {} }, { { fork, tip } }, 1.0), 0);
   EXPECT_GE(coverage(s, fork, Vec3{ 28, 8, 16 }, 2.0, 1.5), 0.99);
 }
+
+TEST(TubeSectionTracker, EndsAFreeEndAtTheVesselsTipNotOnTheEdgeOfAStripBeyondIt)
+{
+  // A thin vessel (radius 0.7: one voxel wide) along x ends at x = 30 against a strip (a ribbon
+  // one voxel thick in the plane z = 16) that crosses its line at x = 31 and runs on from there
+  // along x on one side of it, its edge on the vessel's line: as on the raw phantom (256^3 seed 1
+  // noise 50, 256^3 seed 3 noise 50: a thin vessel ending against clutter at vessel intensity).
+  // The coder's path runs on along the strip's edge. The free end's track from the tube loses
+  // it where the strip crosses (two arcs touch the section: no tube's), coasts, then finds only
+  // sections that the strip touches: a circle of the thin tube's radius fits the strip's edge
+  // as well as the vessel. Kept, that track drew the end 10 voxels past the tip; now the end
+  // stays at the tip (confirmedPart) and the vessel is covered to it.
+  const Dims dims{ 56, 40, 32 };
+  const Vec3 a{ 3, 16, 16 }, tip{ 30, 16, 16 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      const bool vessel = segmentDistance(p, a, tip) <= 0.7;
+      const bool across = p.x == 31.0 && p.y >= 6.0 && p.y <= 26.0;
+      const bool along = p.x >= 32.0 && p.x <= 50.0 && p.y >= 16.0 && p.y <= 26.0;
+      return vessel || (p.z == 16.0 && (across || along));
+    });
+  QSkeleton s;
+  SkeletonPath path;
+  path.id = 0;
+  path.points = drawn({ Vec3{ 5, 16, 16 }, Vec3{ 42, 16, 16 } }, 0.7);
+  path.points.front().label = path.points.back().label = PointLabel::EndPoint;
+  s.paths = { path };
+  ASSERT_EQ(s.validate(), "");
+  const auto r = TubeSectionTracker::track(s, SectionForeground::of(mask), kUnit);
+  print("a free end onto the edge of a strip beyond the tip", s, r);
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(r.stretchesTracked, 1); // the free end was re-traced
+  EXPECT_EQ(r.freeEndsEndedWhereTubeLost, 1);
+  double farthest = 0.0;
+  for (const SkeletonPath& q : s.paths)
+  {
+    for (const SkeletonPoint& p : q.points)
+    {
+      farthest = std::max(farthest, p.position_World_mm.x);
+    }
+  }
+  EXPECT_LE(farthest, tip.x + 0.7 + 1.5); // at most 1.5 voxels outside the vessel
+  EXPECT_GE(coverage(s, a, tip, 1.0, 1.5), 0.99);
+
+  // The same vessel going on across the strip to x = 40, the strip only crossing it (a thin
+  // vessel past a thin plate at right angles); the coder's points past the crossing drawn 1.5
+  // voxels off its axis (no section of their own). The track loses the tube at the crossing as
+  // before, and finds it again untouched: the end is re-traced on to the vessel's tip.
+  const Vec3 farTip{ 40, 16, 16 };
+  const SparseVesselMask crossed = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      return segmentDistance(p, a, farTip) <= 0.7 ||
+             (p.z == 16.0 && p.x == 31.0 && p.y >= 6.0 && p.y <= 26.0);
+    });
+  QSkeleton t;
+  path.points = drawn(
+    { Vec3{ 5, 16, 16 }, Vec3{ 31, 16, 16 }, Vec3{ 32, 16, 17.5 }, Vec3{ 40, 16, 17.5 } }, 0.7);
+  path.points.front().label = path.points.back().label = PointLabel::EndPoint;
+  t.paths = { path };
+  ASSERT_EQ(t.validate(), "");
+  const auto rt = TubeSectionTracker::track(t, SectionForeground::of(crossed), kUnit);
+  print("a free end across a strip crossing the vessel", t, rt);
+  EXPECT_EQ(t.validate(), "");
+  EXPECT_EQ(rt.stretchesTracked, 1);
+  EXPECT_EQ(rt.freeEndsEndedWhereTubeLost, 0);
+  EXPECT_GE(coverage(t, a, farTip, 1.0, 1.0), 0.99);
+  EXPECT_EQ(pointsOff(t, { { a, farTip } }, 1.0), 0);
+}
