@@ -5,6 +5,7 @@
 #include "vtouchAutomaticDownsampling.h"
 #include "vtouchCoarseSkeletonRefiner.h"
 #include "vtouchCurveGeometry.h"
+#include "vtouchSinglePointPaths.h"
 
 #include <itkCommand.h>
 #include <itkHessianToObjectnessMeasureImageFilter.h>
@@ -485,6 +486,7 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateFromGlobalSeedCode(SparseVe
   this->m_NumberOfVesselVoxels = mask.vesselCount();
   this->CheckAbort(this->m_MaskProgressShare);
   this->m_RawSkeleton = this->Code(mask, 1, nullptr, &ss);
+  dropSinglePointPaths(this->m_RawSkeleton); // entries a voxel wide at the piece's faces
   this->m_EffectiveDownsampleFactor = 1;
   this->m_RawSkeleton.stageSeconds.emplace_back("mask", maskSeconds);
   this->m_RawSkeleton.stageSeconds.emplace_back("globalSeedCode", roundsSeconds);

@@ -3,6 +3,7 @@
 // single run's root; a rank whose run stopped before its coder joins and nobody waits; every
 // failure is a verdict every rank reaches together; the coder's hook in VoxelCodingSkeletonFilter.
 #include "vtouchSeededDistributedCoding.h"
+#include "vtouchSinglePointPaths.h"
 
 #include "vtouchInProcessCollectives.h"
 #include "vtouchPieceGrid.h"
@@ -249,6 +250,47 @@ TEST(SeededDistributedCoding, JoiningTwiceIsRefused)
       coding.code(mask);
       EXPECT_THROW(coding.join(), std::logic_error);
     });
+}
+
+TEST(SinglePointPaths, OneVoxelPathsGoAndWhatHungOnThemHangsWhereTheyHung)
+{
+  // Path 0 the parent (x = 0..4, y = 0); path 1 one voxel attached to path 0 (junction 0) that
+  // path 2 hangs on by its tail (junction 1); path 3 one free voxel at (9, 9, 0) that path 4
+  // hangs on by its head (junction 2).
+  RawSkeleton s;
+  const auto path = [](int voxels, int y, int head, int tail)
+  {
+    RawSkeletonPath p;
+    for (int i = 0; i < voxels; ++i)
+    {
+      p.voxels.push_back({ i, y, 0 });
+      p.center_mm.push_back({ static_cast<double>(i), static_cast<double>(y), 0.0 });
+      p.radius_mm.push_back(1.0);
+    }
+    p.headJunction = head;
+    p.tailJunction = tail;
+    return p;
+  };
+  RawSkeletonPath free = path(1, 0, -1, -1);
+  free.voxels[0] = { 9, 9, 0 };
+  s.paths = { path(5, 0, -1, -1), path(1, 1, 0, -1), path(2, 2, -1, 1), free, path(3, 8, 2, -1) };
+  s.junctions = { { 1, false, 0, 2 }, { 2, true, 1, 0 }, { 4, false, 3, 0 } };
+  EXPECT_EQ(dropSinglePointPaths(s), 2);
+  ASSERT_EQ(s.paths.size(), 3U);
+  ASSERT_EQ(s.junctions.size(), 1U);
+  // The old path 2 now hangs on path 0 at point 2, where the dropped path 1 hung.
+  EXPECT_EQ(s.paths[1].voxels.size(), 2U);
+  EXPECT_EQ(s.paths[1].tailJunction, 0);
+  EXPECT_EQ(s.junctions[0].childPath, 1);
+  EXPECT_TRUE(s.junctions[0].childTail);
+  EXPECT_EQ(s.junctions[0].parentPath, 0);
+  EXPECT_EQ(s.junctions[0].parentPoint, 2);
+  // The old path 4 ends free on the dropped free voxel (prepended to its head).
+  EXPECT_EQ(s.paths[2].headJunction, -1);
+  ASSERT_EQ(s.paths[2].voxels.size(), 4U);
+  EXPECT_EQ(s.paths[2].voxels.front(), (std::array<std::int64_t, 3>{ 9, 9, 0 }));
+  EXPECT_EQ(s.paths[2].radius_mm.size(), 4U);
+  EXPECT_EQ(dropSinglePointPaths(s), 0);
 }
 
 using ByteImage = itk::Image<unsigned char, 3>;
