@@ -18,9 +18,11 @@
 #include <itkImage.h>
 #include <itkProcessObject.h>
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <utility>
+#include <vector>
 
 namespace vtouch
 {
@@ -132,6 +134,19 @@ public:
     this->Modified();
   }
 
+  /// The distributed seeded modes' global SS code (issue 19 item 2; vtouch::SeededDistributedCoding
+  /// on the pvserver's ranks): when set, the filter calls it once with the final mask (after the
+  /// threshold or the vessel mask; it may clear voxels it cannot code exactly) and codes that mask
+  /// at full resolution with the returned field (VoxelCodingParameters::globalSs_mm) instead of
+  /// propagating its own from a root; the seed point is then not used (the field's root is the
+  /// seed). A throw (std::exception) becomes the filter's exception. Empty (default): the single
+  /// run.
+  using GlobalSeedCodeFunction = std::function<std::vector<float>(SparseVesselMask& mask)>;
+  void SetGlobalSeedCode(GlobalSeedCodeFunction function)
+  {
+    this->m_GlobalSeedCode = std::move(function);
+    this->Modified();
+  }
   /// Number of vessel voxels of the last run (input resolution), and the bytes used by the masks
   /// and the codes.
   itkGetConstMacro(NumberOfVesselVoxels, unsigned long long);
@@ -157,10 +172,18 @@ private:
   /// it) and throws itk::ProcessAborted when the run is to stop.
   void CheckAbort(float progress);
   IndexType SeedIndex(const SparseVesselMask& mask) const;
+  /// GenerateData with GlobalSeedCode set: the rounds on the final mask, then its coding.
+  void GenerateFromGlobalSeedCode(SparseVesselMask& mask, double maskSeconds);
+  /// The last stages of both: the empty-skeleton check, the world frame and its geometry.
+  void FinishOutput();
   QSkeleton ToWorld(const RawSkeleton& raw) const;
   /// Voxel coding of `mask`, whose voxels are blocks of `factor`^3 input voxels; `seed` (input
   /// voxel index) or nullptr.
-  RawSkeleton Code(const SparseVesselMask& mask, unsigned int factor, const IndexType* seed);
+  /// `globalSs_mm`: the field to code with (GlobalSeedCode), or nullptr.
+  RawSkeleton Code(const SparseVesselMask& mask,
+    unsigned int factor,
+    const IndexType* seed,
+    const std::vector<float>* globalSs_mm = nullptr);
 
   double m_LowerThreshold{ 0.5 };
   double m_UpperThreshold{ std::numeric_limits<double>::max() };
@@ -182,6 +205,7 @@ private:
   unsigned long long m_CodeMemoryBytes{ 0 };
   RawSkeleton m_RawSkeleton;
   std::shared_ptr<const SparseVesselMask> m_VesselMask;
+  GlobalSeedCodeFunction m_GlobalSeedCode;
   /// The mask's share of the run's progress (the vesselness, when on, takes half the run).
   float m_MaskProgressShare{ 0.05F };
 };

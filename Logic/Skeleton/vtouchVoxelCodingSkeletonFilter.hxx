@@ -5,6 +5,7 @@
 #include "vtouchAutomaticDownsampling.h"
 #include "vtouchCoarseSkeletonRefiner.h"
 #include "vtouchCurveGeometry.h"
+#include "vtouchSinglePointPaths.h"
 
 #include <itkCommand.h>
 #include <itkHessianToObjectnessMeasureImageFilter.h>
@@ -414,7 +415,8 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
 template<typename TInputImage>
 RawSkeleton VoxelCodingSkeletonFilter<TInputImage>::Code(const SparseVesselMask& mask,
   unsigned int factor,
-  const IndexType* seed)
+  const IndexType* seed,
+  const std::vector<float>* globalSs_mm)
 {
   this->m_NumberOfCodedVoxels = mask.vesselCount();
   VoxelCodingParameters par;
@@ -426,6 +428,7 @@ RawSkeleton VoxelCodingSkeletonFilter<TInputImage>::Code(const SparseVesselMask&
   par.minimumComponentSize =
     std::max<unsigned long>(1, this->m_MinimumComponentSize / (factor * factor * factor));
   par.clusterWidth_mm = this->m_ClusterWidth;
+  par.globalSs_mm = globalSs_mm;
   if (seed)
   {
     // The block of a vessel voxel is vessel (block maximum).
@@ -462,6 +465,52 @@ RawSkeleton VoxelCodingSkeletonFilter<TInputImage>::Code(const SparseVesselMask&
 }
 
 template<typename TInputImage>
+void VoxelCodingSkeletonFilter<TInputImage>::GenerateFromGlobalSeedCode(SparseVesselMask& mask,
+  double maskSeconds)
+{
+  // Full resolution (project rule, issue 19 item 2): the field is the whole volume's, computed on
+  // the input's grid across the ranks; a coarse block grid would start at each piece's first
+  // voxel, not on one grid of the whole volume, so no factor > 1 gives every rank the same coding.
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<float> ss;
+  try
+  {
+    ss = this->m_GlobalSeedCode(mask); // collective: every rank calls it once per run
+  }
+  catch (const std::exception& e)
+  {
+    itkExceptionMacro(<< e.what());
+  }
+  const double roundsSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  this->m_NumberOfVesselVoxels = mask.vesselCount();
+  this->CheckAbort(this->m_MaskProgressShare);
+  this->m_RawSkeleton = this->Code(mask, 1, nullptr, &ss);
+  dropSinglePointPaths(this->m_RawSkeleton); // entries a voxel wide at the piece's faces
+  this->m_EffectiveDownsampleFactor = 1;
+  this->m_RawSkeleton.stageSeconds.emplace_back("mask", maskSeconds);
+  this->m_RawSkeleton.stageSeconds.emplace_back("globalSeedCode", roundsSeconds);
+  this->m_CodeMemoryBytes = mask.memoryBytes() + this->m_RawSkeleton.peakBytes;
+  this->FinishOutput();
+}
+
+template<typename TInputImage>
+void VoxelCodingSkeletonFilter<TInputImage>::FinishOutput()
+{
+  if (this->m_RawSkeleton.paths.empty())
+  {
+    itkExceptionMacro("no vessel component of at least " << this->m_MinimumComponentSize
+                                                         << " voxels has a centerline");
+  }
+  this->CheckAbort(0.95F);
+  const auto t0 = std::chrono::steady_clock::now();
+  this->GetOutput()->Get() = this->ToWorld(this->m_RawSkeleton);
+  this->m_RawSkeleton.stageSeconds.emplace_back(
+    "geometry", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  this->UpdateProgress(1.0F);
+}
+
+template<typename TInputImage>
 void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
 {
   QSkeletonObject* output = this->GetOutput();
@@ -473,9 +522,14 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
   { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   auto t0 = Clock::now();
   this->m_MaskProgressShare = this->m_UseVesselness && !this->m_VesselMask ? 0.5F : 0.05F;
-  const SparseVesselMask mask = this->BuildMask();
+  SparseVesselMask mask = this->BuildMask();
   const double maskSeconds = seconds(t0);
   this->CheckAbort(this->m_MaskProgressShare);
+  if (this->m_GlobalSeedCode)
+  {
+    this->GenerateFromGlobalSeedCode(mask, maskSeconds);
+    return;
+  }
   this->m_NumberOfVesselVoxels = mask.vesselCount();
   IndexType seedIndex;
   if (this->m_UseSeedPoint)
@@ -520,16 +574,7 @@ void VoxelCodingSkeletonFilter<TInputImage>::GenerateData()
   this->m_RawSkeleton.stageSeconds.emplace_back("mask", maskSeconds);
   this->m_RawSkeleton.stageSeconds.emplace_back("scale", scaleSeconds);
   this->m_CodeMemoryBytes = mask.memoryBytes() + coarseMaskBytes + this->m_RawSkeleton.peakBytes;
-  if (this->m_RawSkeleton.paths.empty())
-  {
-    itkExceptionMacro("no vessel component of at least " << this->m_MinimumComponentSize
-                                                         << " voxels has a centerline");
-  }
-  this->CheckAbort(0.95F);
-  t0 = Clock::now();
-  output->Get() = this->ToWorld(this->m_RawSkeleton);
-  this->m_RawSkeleton.stageSeconds.emplace_back("geometry", seconds(t0));
-  this->UpdateProgress(1.0F);
+  this->FinishOutput();
 }
 
 template<typename TInputImage>

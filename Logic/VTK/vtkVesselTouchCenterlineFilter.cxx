@@ -4,6 +4,7 @@
 #include "vtouchDistributedCenterline.h"
 #include "vtouchDistributedRequest.h"
 #include "vtouchDistributedRawRegion.h"
+#include "vtouchDistributedSeededCode.h"
 #include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchSeedComponentSplit.h"
@@ -35,6 +36,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <new>
 #include <sstream>
@@ -61,6 +63,9 @@ struct Settings
   std::shared_ptr<const vtouch::SparseVesselMask> mask;
   /// The coder's fraction done; returns false to abort it.
   vtouch::ProgressCallback progress;
+  /// The distributed seeded modes' global SS code (VoxelCodingSkeletonFilter::SetGlobalSeedCode),
+  /// or empty (the single run).
+  std::function<std::vector<float>(vtouch::SparseVesselMask&)> globalSeedCode;
 };
 
 /// Wraps the VTK scalars as an ITK image (no copy) with the VTK geometry.
@@ -177,6 +182,10 @@ vtouch::QSkeleton skeletonize(vtkImageData* image,
   filter->SetVesselnessThreshold(s.vesselnessThreshold);
   filter->SetDownsampleFactor(static_cast<unsigned int>(std::max(0, s.downsampleFactor)));
   filter->SetVesselMask(s.mask);
+  if (s.globalSeedCode)
+  {
+    filter->SetGlobalSeedCode(s.globalSeedCode);
+  }
   // Progress to VTK; VTK's abort flag and the cancel flag to ITK (on the thread that runs the
   // filter: ITK invokes progress events on the thread that called Update()).
   auto progress = itk::CStyleCommand::New();
@@ -516,9 +525,11 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
       }
     }
   }
+  // Distributed seeded modes: the coder codes with the global SS field, whose root is the seed.
+  vtouch::DistributedSeededCode* global = this->DistributedSeedCode;
   const Settings s{ lower,
     upper,
-    this->UseSeedPoint && codeFromSeed,
+    this->UseSeedPoint && codeFromSeed && !global,
     { seed[0], seed[1], seed[2] },
     this->DistributedRegion
       ? vtouch::DistributedRawRegion::componentSizeVoxels(
@@ -537,7 +548,9 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     {
       this->UpdateProgress(coderBegin + (0.95 - coderBegin) * fraction);
       return !this->CancelRequested();
-    } };
+    },
+    global ? [global](vtouch::SparseVesselMask& m) { return global->code(m); }
+           : std::function<std::vector<float>(vtouch::SparseVesselMask&)>() };
   try
   {
     vtouch::QSkeleton skeleton;
@@ -550,13 +563,15 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
         skeleton = skeletonize(input, static_cast<float*>(data), s, factorUsed, coderSeconds);
         break;
       case VTK_UNSIGNED_CHAR:
-        skeleton = skeletonize(input, static_cast<unsigned char*>(data), s, factorUsed, coderSeconds);
+        skeleton =
+          skeletonize(input, static_cast<unsigned char*>(data), s, factorUsed, coderSeconds);
         break;
       case VTK_SHORT:
         skeleton = skeletonize(input, static_cast<short*>(data), s, factorUsed, coderSeconds);
         break;
       case VTK_UNSIGNED_SHORT:
-        skeleton = skeletonize(input, static_cast<unsigned short*>(data), s, factorUsed, coderSeconds);
+        skeleton =
+          skeletonize(input, static_cast<unsigned short*>(data), s, factorUsed, coderSeconds);
         break;
       default:
       {
@@ -686,32 +701,96 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   hooks.ghostMarginVoxels = [this](const double spacing[3])
   { return this->GetGhostMarginVoxels(spacing); };
   hooks.automaticIntensityRange = this->AutomaticIntensityRange;
+  // The seeded modes (issue 19 item 2): every rank codes its piece with the single run's SS
+  // field, computed across the ranks from the seed (vtouch::DistributedSeededCode, the coder's
+  // hook), instead of from a root of its own. At full resolution (project rule: a coarse block
+  // grid starts at each piece's first voxel, not on one grid of the whole volume): an explicit
+  // DownsampleFactor > 1 keeps each rank's own roots, as before.
+  const bool globalSeedCode = this->UseSeedPoint && this->DownsampleFactor <= 1;
+  std::unique_ptr<vtouch::DistributedSeededCode> seeded;
+  const auto controller = []
+  {
+    return vtouch::DistributedCenterline::controllerFor(
+      vtkMultiProcessController::GetGlobalController()->GetLocalProcessId(),
+      vtkMultiProcessController::GetGlobalController()->GetNumberOfProcesses());
+  };
   // The raw seeded mode: the range and the region with the other ranks (collective), then the
-  // piece's own run codes that region (the hook in ExtractVolume); the seed's rank adds the parts
-  // of the network that reach the seed only outside its piece.
+  // piece's own run codes that region (the hook in ExtractVolume). Without the global SS code the
+  // seed's rank adds the parts of the network that reach the seed only outside its piece.
   vtouch::CandidateRegionOutcome region, rest;
   vtouch::DistributedRawRegion::Report regionReport;
-  if (this->AutomaticIntensityRange && this->UseSeedPoint)
+  const bool raw = this->AutomaticIntensityRange && this->UseSeedPoint;
+  if (raw)
   {
     hooks.beforePiece = [&](vtkImageData* input, const vtouch::VoxelExtent6& whole)
     {
-      vtkMultiProcessController* controller = vtouch::DistributedCenterline::controllerFor(
-        vtkMultiProcessController::GetGlobalController()->GetLocalProcessId(),
-        vtkMultiProcessController::GetGlobalController()->GetNumberOfProcesses());
       vtouch::CandidateRegionRequest request;
       request.useSeed = true;
       std::copy(this->SeedPoint, this->SeedPoint + 3, request.seed_World_mm);
       vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
-      region =
-        vtouch::DistributedRawRegion::run(controller, input, scalars, whole, request, regionReport);
-      rest = vtouch::DistributedRawRegion::splitSeedComponent(region);
+      region = vtouch::DistributedRawRegion::run(
+        controller(), input, scalars, whole, request, regionReport);
       this->DistributedRegion = &region;
+      if (!globalSeedCode)
+      {
+        rest = vtouch::DistributedRawRegion::splitSeedComponent(region);
+        return;
+      }
+      // The whole region is coded with the global field (no split): the region's seed voxel,
+      // known on the seed's rank; the region is exact on the evaluable box only.
+      std::array<std::int64_t, 3> seed_Whole{ -1, -1, -1 };
+      const bool here = input && region.ok && region.seedIndex[0] >= 0;
+      if (here)
+      {
+        int e[6];
+        input->GetExtent(e);
+        for (std::size_t a = 0; a < 3; ++a)
+        {
+          seed_Whole[a] = region.seedIndex[a] + e[2 * a] - whole[2 * a];
+        }
+      }
+      seeded = std::make_unique<vtouch::DistributedSeededCode>(
+        controller(), input, whole, here, seed_Whole, true);
+      this->DistributedSeedCode = seeded.get();
     };
+  }
+  else if (globalSeedCode)
+  {
+    hooks.beforePiece = [&](vtkImageData* input, const vtouch::VoxelExtent6& whole)
+    {
+      const std::array<std::int64_t, 3> seed_Whole =
+        input ? vtouch::DistributedSeededCode::seedVoxel_Whole(input, this->SeedPoint, whole)
+              : std::array<std::int64_t, 3>{ -1, -1, -1 };
+      seeded = std::make_unique<vtouch::DistributedSeededCode>(
+        controller(), input, whole, input != nullptr, seed_Whole, false);
+      this->DistributedSeedCode = seeded.get();
+    };
+  }
+  if (globalSeedCode)
+  {
+    hooks.afterExtract = [&]
+    {
+      this->DistributedSeedCode = nullptr;
+      if (seeded)
+      {
+        seeded->finish(); // collective: a rank whose run stopped before its coder joins here
+      }
+    };
+  }
+  if (raw || globalSeedCode)
+  {
     hooks.afterPiece = [&](vtkImageData* input, vtkPolyData* own, vtouch::QSkeleton& skeleton)
     {
       this->DistributedRegion = nullptr;
-      vtouch::DistributedRawRegion::addReport(own->GetFieldData(), regionReport);
+      if (raw)
+      {
+        vtouch::DistributedRawRegion::addReport(own->GetFieldData(), regionReport);
+      }
+      if (seeded)
+      {
+        seeded->addReport(own->GetFieldData());
+      }
       if (rest.ok)
       {
         this->AddRestOfRegion(inputVector, input, rest, skeleton);
@@ -721,6 +800,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   const vtouch::DistributedRequest::Outcome outcome =
     vtouch::DistributedRequest::run(inputVector, output, hooks);
   this->DistributedRegion = nullptr;
+  this->DistributedSeedCode = nullptr;
   this->ExtractionMessage = outcome.message;
   if (!outcome.firstRank)
   {

@@ -4,6 +4,7 @@
 #include "vtouchControllerCollectives.h"
 #include "vtouchDistributedCandidateRegion.h"
 #include "vtouchDistributedCenterline.h"
+#include "vtouchDistributedSeededCode.h"
 #include "vtouchSeedComponentSplit.h"
 
 #include "vtkDataArray.h"
@@ -20,56 +21,6 @@ namespace vtouch
 {
 namespace
 {
-/// The layout of the ranks' pieces: what each holds (its input's extent, gathered: what it really
-/// read), what each owns (the executive's split, half-open on shared faces).
-PieceLayout layoutOf(RankCollectives& c,
-  vtkImageData* piece,
-  bool usable,
-  const VoxelExtent6& whole)
-{
-  std::vector<double> mine{ 0, -1, 0, -1, 0, -1 };
-  if (usable)
-  {
-    int e[6];
-    piece->GetExtent(e);
-    for (int a = 0; a < 3; ++a)
-    {
-      mine[static_cast<std::size_t>(2 * a)] = e[2 * a] - whole[static_cast<std::size_t>(2 * a)];
-      mine[static_cast<std::size_t>(2 * a + 1)] =
-        e[2 * a + 1] - whole[static_cast<std::size_t>(2 * a)];
-    }
-  }
-  const std::vector<std::vector<double>> held = c.allGather(mine);
-  PieceLayout layout;
-  layout.rank = c.rank();
-  for (int a = 0; a < 3; ++a)
-  {
-    layout.wholeDims[static_cast<std::size_t>(a)] =
-      whole[static_cast<std::size_t>(2 * a + 1)] - whole[static_cast<std::size_t>(2 * a)] + 1;
-  }
-  const std::vector<VoxelExtent6> split = DistributedCenterline::pieceExtents(whole, c.ranks());
-  for (int r = 0; r < c.ranks(); ++r)
-  {
-    VoxelBox h, o;
-    const VoxelExtent6& e = split[static_cast<std::size_t>(r)];
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      const std::vector<double>& hr = held[static_cast<std::size_t>(r)];
-      h.lo[a] = hr.size() == 6 ? static_cast<std::int64_t>(hr[2 * a]) : 0;
-      h.hi[a] = hr.size() == 6 ? static_cast<std::int64_t>(hr[2 * a + 1]) : -1;
-      o.lo[a] = e[2 * a] - whole[2 * a];
-      o.hi[a] = e[2 * a + 1] - whole[2 * a];
-      if (e[2 * a + 1] < whole[2 * a + 1])
-      {
-        o.hi[a] -= 1; // the shared face layer belongs to the upper piece
-      }
-    }
-    layout.held.push_back(h);
-    layout.owned.push_back(o);
-  }
-  return layout;
-}
-
 template<typename T>
 DistributedCandidateRegion::Result extractTyped(vtkImageData* piece,
   const T* data,
@@ -167,7 +118,7 @@ CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* cont
   out.automatic = true;
   const bool usable = piece && scalars && scalars->GetNumberOfComponents() == 1 &&
                       scalars->GetNumberOfTuples() == piece->GetNumberOfPoints();
-  const PieceLayout layout = layoutOf(c, piece, usable, whole);
+  const PieceLayout layout = DistributedSeededCode::gatherLayout(c, piece, usable, whole);
   try
   {
     layout.check(); // the same layout, hence the same verdict, on every rank

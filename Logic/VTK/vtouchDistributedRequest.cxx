@@ -72,6 +72,10 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
     hooks.extractPiece(DistributedCenterline::pieceFromIndexZero(input), own);
     report.extractSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - extractStart).count();
+    if (hooks.afterExtract)
+    {
+      hooks.afterExtract(); // collective
+    }
     hooks.lastRun(outcome.rangeUsed, pieceMessage);
     std::string error;
     if (own->GetNumberOfLines() > 0 && !PolyDataToQSkeleton().convert(own, skeleton, error))
@@ -92,6 +96,10 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
     {
       report.readerBytes = bytes->GetComponent(0, 0);
     }
+  }
+  else if (hooks.afterExtract)
+  {
+    hooks.afterExtract(); // collective: a rank without a piece joins too
   }
   // Collective: every rank gets here once per run, whatever its piece gave.
   DistributedCenterline::Result result;

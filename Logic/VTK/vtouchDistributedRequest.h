@@ -47,6 +47,9 @@ public:
     /// Optional, collective: runs on every rank before its piece is coded, with or without an
     /// input (the raw seeded mode's range and region across the ranks).
     std::function<void(vtkImageData* input, const VoxelExtent6& whole)> beforePiece;
+    /// Optional, collective: runs on every rank right after its piece's run, with or without an
+    /// input (the seeded modes' SS rounds, joined by a rank whose run stopped before its coder).
+    std::function<void()> afterExtract;
     /// Optional: runs after the piece was coded (`own`, its polydata) and read into `skeleton`,
     /// on ranks with an input; may add to both.
     std::function<void(vtkImageData* input, vtkPolyData* own, QSkeleton& skeleton)> afterPiece;

@@ -2,14 +2,15 @@
 
     VESSELTOUCH_PLUGIN=<build>/lib/paraview-5.11/plugins/VesselTouch/VesselTouch.so \\
         pvpython Testing/ParaView/clientserver/measure_cs_topology.py --volume tree.nrrd \\
-        --ranks 1 2 4 [--lower 500 --upper 65535]
+        --ranks 1 2 4 [--lower 500 --upper 65535] [--seed X Y Z]
 
 For each rank count a pvserver starts on 127.0.0.1, reads the volume (each rank its piece) and
 runs VesselCenterline thresholded (DistributedExtraction on with more than one rank). Printed:
 paths, points, vessel ends, bifurcations and loops (vtouch_skeleton_graph.graph), the shortest
 polyline, and the stitch's field arrays (Stitch*). The scaling bench's tree:
-`scaling_bench.write_tree_nrrd(path, (256, 256, 256))` (Utilities/bench). A measurement, not a
-test: nothing is asserted.
+`scaling_bench.write_tree_nrrd(path, (256, 256, 256))` (Utilities/bench). With --seed (world mm)
+the run is seeded (UseSeedPoint: the distributed run codes with the global SS code, its rounds
+printed as SeedCodeRounds). A measurement, not a test: nothing is asserted.
 """
 
 import argparse
@@ -25,7 +26,7 @@ from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
 
 
-def measure(volume, ranks, lower, upper):
+def measure(volume, ranks, lower, upper, seed=None):
     server = ParallelServer(ranks=ranks)
     server.start()
     try:
@@ -34,13 +35,19 @@ def measure(volume, ranks, lower, upper):
         centerline = simple.VesselCenterline(Input=reader, AutomaticIntensityRange=0,
                                              LowerThreshold=lower, UpperThreshold=upper,
                                              DistributedExtraction=1 if ranks > 1 else 0)
+        if seed:
+            centerline.UseSeedPoint = 1
+            centerline.SeedPoint = seed
         centerline.UpdatePipeline()
         data = sm.Fetch(centerline)
         g = graph(data, 1.0)
         fd = data.GetFieldData()
         stitch = {fd.GetArrayName(i): fd.GetArray(i).GetTuple(0)[0]
                   for i in range(fd.GetNumberOfArrays())
-                  if fd.GetArrayName(i).startswith("Stitch")}
+                  if fd.GetArrayName(i).startswith(("Stitch", "SeedCode"))}
+        message = fd.GetAbstractArray("ExtractionMessage")
+        if message is not None and message.GetNumberOfValues() and message.GetValue(0):
+            print("ranks %d: message %r" % (ranks, message.GetValue(0)))
         shortest = min(len(c) for c in g["chains"]) if g["chains"] else 0
         print("ranks %d: %d paths, %d points, %d ends, %d bifurcations, %d loops, shortest "
               "polyline %d points; %s" % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(),
@@ -57,13 +64,15 @@ def main():
     parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
     parser.add_argument("--lower", type=float, default=500.0)
     parser.add_argument("--upper", type=float, default=65535.0)
+    parser.add_argument("--seed", type=float, nargs=3, default=None,
+                        help="a seed point (world mm): the seeded mode")
     args = parser.parse_args()
     if not os.path.exists(args.volume):
         sys.exit("no volume at %s" % args.volume)
     if "VESSELTOUCH_PLUGIN" not in os.environ:
         sys.exit("set VESSELTOUCH_PLUGIN to the plugin's VesselTouch.so")
     for ranks in args.ranks:
-        measure(args.volume, ranks, args.lower, args.upper)
+        measure(args.volume, ranks, args.lower, args.upper, args.seed)
 
 
 if __name__ == "__main__":

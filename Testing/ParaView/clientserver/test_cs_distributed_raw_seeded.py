@@ -13,9 +13,9 @@ seed on its root vessel (port 1's first point):
   the built-in range (IntensityRangeUsed), reports its rounds (RegionGrowthRounds >= 3: the tree
   crosses the piece face z = 55 and comes back), the built-in topology (vessel ends,
   bifurcations; vtouch_skeleton_graph; no band stub left unmatched: StitchCutEndsUnmatched 0),
-  the seed's rank's points (its owned box) within 0.1 voxel of the built-in ones (90 % at
-  least: parts that reach the seed only outside its piece are coded from roots of their own)
-  and every point within the coder's root envelope + 0.1 voxel;
+  the global SS code's rounds (SeedCodeRounds >= 2: every rank codes with the single run's SS
+  field, from the seed), 95 % of every rank's points within 0.1 voxel of the built-in ones and
+  every point within RAW_STAGES_VOXELS (the raw path's per-piece stages, below);
 - a seed on the background, on N ranks: the built-in message and an empty output; a watchdog
   kills the server if a run does not return (a rank waiting for the others forever).
 Exits non-zero on any failure.
@@ -156,6 +156,12 @@ def distributed(server, path, refs):
             check(pieces is not None and int(pieces[0][0]) == RANKS,
                   "%s: the extraction ran on every rank (%s)" % (name, pieces))
             rounds = field(data, "RegionGrowthRounds")
+            ss_rounds = field(data, "SeedCodeRounds")
+            print("%s on %d ranks: SS code rounds %s, voxels sent by rank 0 %s, root %s"
+                  % (name, RANKS, ss_rounds, field(data, "SeedCodeVoxelsSent"),
+                     field(data, "SeedCodeRoot")))
+            check(ss_rounds is not None and ss_rounds[0][0] >= 2,
+                  "%s: the global SS code ran in rounds across the face (%s)" % (name, ss_rounds))
             used = field(data, "IntensityRangeUsed")
             unmatched = field(data, "StitchCutEndsUnmatched")
             print("%s on %d ranks: %d paths, %s; range %s; growth rounds %s, component rounds %s,"
@@ -210,15 +216,18 @@ def distributed(server, path, refs):
                       % (seed_side.sum(), 100.0 * same, d[seed_side].max(), (~seed_side).sum(),
                          100.0 * (d[~seed_side] <= 0.1).mean(), d[~seed_side].max(),
                          ENVELOPE[0]))
-                # On the seed's rank, the seed's component is coded from the seed (0.1 voxel);
-                # parts that reach the seed only outside its piece from roots of their own.
-                check(same >= SEED_SIDE_WITHIN, "%s: %.1f %% of the seed's rank's points within "
-                      "0.1 voxel of the built-in run (at least %.0f %%)"
-                      % (name, 100.0 * same, 100.0 * SEED_SIDE_WITHIN))
-                tolerance = ENVELOPE[0] + 0.1
-                check(max(to_ref, from_ref) <= tolerance,
-                      "%s: every point within the root envelope + 0.1 = %.3f voxel of the "
-                      "built-in run (%.3f, %.3f)" % (name, tolerance, to_ref, from_ref))
+                # Every rank codes with the single run's SS field (from the seed): most points
+                # within 0.1 voxel on every rank, the rest moved by the raw path's per-piece
+                # stages (the tubularity's grids start at each piece's first voxel; the tube
+                # tracker decides on each rank's paths).
+                within = (d <= 0.1).mean()
+                check(within >= ALL_WITHIN, "%s: %.1f %% of every rank's points within 0.1 voxel "
+                      "of the built-in run (at least %.0f %%)"
+                      % (name, 100.0 * within, 100.0 * ALL_WITHIN))
+                check(max(to_ref, from_ref) <= RAW_STAGES_VOXELS,
+                      "%s: every point within %.1f voxels of the built-in run (%.3f, %.3f; the "
+                      "root envelope, no longer needed, is %.3f)"
+                      % (name, RAW_STAGES_VOXELS, to_ref, from_ref, ENVELOPE[0]))
             simple.Delete(centerline)
         simple.Delete(volume)
     finally:
@@ -230,7 +239,13 @@ PARSER = argparse.ArgumentParser()
 PARSER.add_argument("--ranks", type=int, default=2)
 RANKS = PARSER.parse_args().ranks
 ENVELOPE = [0.0]
-SEED_SIDE_WITHIN = 0.9
+# Measured with the global SS code (h19w, 112^3): 98.3 % of the points within 0.1 voxel on 2
+# ranks, 97.3 % on 4 (before it: the seed's rank 97.3 %, the other 19.8 %); the farthest point
+# 1.76 voxel on both, in the seed's rank's box (the same point before the global field: not
+# the root; not traced further); the root envelope, the bound before, is 7.8 voxels. Bounds a
+# little beyond the measured: coding from roots of their own again fails the first on 2 ranks.
+ALL_WITHIN = 0.95
+RAW_STAGES_VOXELS = 2.0
 # The seed rank's owned box (lower, upper; world = index, 1 mm voxels): filled by owned_box().
 SEED_BOX = [None, None]
 
