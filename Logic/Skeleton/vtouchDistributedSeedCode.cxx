@@ -263,49 +263,4 @@ float DistributedSeedCode::ssAt(std::uint64_t localLinear) const
   return p.codes.ss[p.mask.rank(localLinear)];
 }
 
-std::pair<std::array<std::int64_t, 3>, double> DistributedSeedCode::farthest(
-  RankCollectives& collectives) const
-{
-  const Impl& p = *this->P;
-  const VoxelBox& owned = p.layout.owned[static_cast<std::size_t>(p.layout.rank)];
-  double bestSs = -1.0;
-  std::int64_t bestLin = 0;
-  p.mask.forEach(
-    [&](std::uint64_t lin)
-    {
-      const float s =
-        p.codes.ss.empty() ? skeleton::VoxelCodes::kInf : p.codes.ss[p.mask.rank(lin)];
-      const std::array<std::int64_t, 3> c = p.layout.toWhole(p.localIndex(lin));
-      if (s == skeleton::VoxelCodes::kInf || !owned.contains(c))
-      {
-        return;
-      }
-      const std::int64_t w = p.layout.wholeLinear(c);
-      if (s > bestSs || (s == bestSs && w < bestLin))
-      {
-        bestSs = s;
-        bestLin = w;
-      }
-    });
-  std::vector<double> mine;
-  if (bestSs >= 0.0)
-  {
-    mine = { bestSs, static_cast<double>(bestLin) }; // exact: linear indices < 2^53
-  }
-  for (const std::vector<double>& v : collectives.allGather(mine))
-  {
-    if (v.size() != 2)
-    {
-      continue;
-    }
-    const auto w = static_cast<std::int64_t>(v[1]);
-    if (v[0] > bestSs || (v[0] == bestSs && w < bestLin))
-    {
-      bestSs = v[0];
-      bestLin = w;
-    }
-  }
-  return { p.layout.wholeIndex(bestLin), bestSs };
-}
-
 } // namespace vtouch

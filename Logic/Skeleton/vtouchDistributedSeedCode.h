@@ -73,11 +73,6 @@ public:
   /// The SS code of local voxel `localLinear` (infinite when it is background or not reached).
   float ssAt(std::uint64_t localLinear) const;
 
-  /// Collective: the vessel voxel farthest from the roots over all ranks (largest finite SS,
-  /// ties to the smallest whole linear index) as { whole index, SS mm }: the far end of the
-  /// double propagation. SS is negative (and the index 0) when no voxel was reached.
-  std::pair<std::array<std::int64_t, 3>, double> farthest(RankCollectives& collectives) const;
-
 private:
   struct Impl;
   std::unique_ptr<Impl> P;

@@ -250,41 +250,6 @@ TEST(DistributedSeedCode, TheRoundCapStopsEveryRankTogether)
   EXPECT_GT(results[0].differing, 0);
 }
 
-TEST(DistributedSeedCode, FarthestIsTheSingleRunsLargestCodeOnEveryRank)
-{
-  const Dims dims{ 44, 40, 48 };
-  const SparseVesselMask whole = maskOf(dims, randomTree(dims, 77));
-  const std::array<double, 3> spacing_mm{ 0.9, 0.75, 1.2 };
-  std::mt19937 random(5);
-  const std::array<std::int64_t, 3> root = randomVesselVoxel(whole, random);
-  const std::vector<float> single = singleRun(whole, spacing_mm, root);
-  float largest = -1.0F;
-  for (float s : single)
-  {
-    largest = s != skeleton::VoxelCodes::kInf ? std::max(largest, s) : largest;
-  }
-  const std::vector<PieceLayout> pieces = layouts(dims, { 2, 2, 2 }, 1);
-  std::vector<std::pair<std::array<std::int64_t, 3>, double>> far(pieces.size());
-  InProcessWorld world(static_cast<int>(pieces.size()));
-  world.run(
-    [&](int r, RankCollectives& c)
-    {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
-      const SparseVesselMask mask = pieceMask(whole, l);
-      DistributedSeedCode code(l, mask, spacing_mm);
-      code.run(c, { root });
-      far[static_cast<std::size_t>(r)] = code.farthest(c);
-    });
-  for (const auto& f : far)
-  {
-    EXPECT_EQ(f.first, far.front().first);
-    EXPECT_EQ(f.second, static_cast<double>(largest));
-    EXPECT_EQ(single[whole.rank(static_cast<std::uint64_t>(
-                f.first[0] + dims[0] * (f.first[1] + dims[1] * f.first[2])))],
-      largest);
-  }
-}
-
 TEST(DistributedSeedCode, ARootOutsideTheVesselsThrowsOnEveryRank)
 {
   const Dims dims{ 40, 24, 48 };
