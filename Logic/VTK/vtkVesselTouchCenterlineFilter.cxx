@@ -6,9 +6,11 @@
 #include "vtouchDistributedRawRegion.h"
 #include "vtouchDistributedSeededCode.h"
 #include "vtouchPolyDataToQSkeleton.h"
+#include "vtouchQSkeletonToPolyData.h"
+#include "vtouchRangeForeground.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchSeedComponentSplit.h"
-#include "vtouchVoxelCodingSkeletonFilter.h"
+#include "vtouchVolumeSkeletonizer.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -45,245 +47,6 @@
 
 vtkStandardNewMacro(vtkVesselTouchCenterlineFilter);
 
-namespace
-{
-struct Settings
-{
-  double lower, upper;
-  bool useSeed;
-  double seed[3];
-  int minimumComponentSize;
-  double minimumBranchLength, smoothing;
-  bool useVesselness;
-  double sigmaMin, sigmaMax;
-  int scales;
-  double vesselnessThreshold;
-  int downsampleFactor;
-  /// The candidate region to code (raw-angiogram path) or null (threshold the input).
-  std::shared_ptr<const vtouch::SparseVesselMask> mask;
-  /// The coder's fraction done; returns false to abort it.
-  vtouch::ProgressCallback progress;
-  /// The distributed seeded modes' global SS code (VoxelCodingSkeletonFilter::SetGlobalSeedCode),
-  /// or empty (the single run).
-  std::function<std::vector<float>(vtouch::SparseVesselMask&)> globalSeedCode;
-};
-
-/// Wraps the VTK scalars as an ITK image (no copy) with the VTK geometry.
-template<typename T>
-typename itk::Image<T, 3>::Pointer importImage(vtkImageData* image, T* data)
-{
-  using Import = itk::ImportImageFilter<T, 3>;
-  auto importer = Import::New();
-  int dims[3];
-  image->GetDimensions(dims);
-  typename Import::SizeType size;
-  typename Import::RegionType region;
-  double origin[3], spacing[3];
-  image->GetOrigin(origin);
-  image->GetSpacing(spacing);
-  typename Import::DirectionType direction;
-  vtkMatrix3x3* m = image->GetDirectionMatrix();
-  for (int r = 0; r < 3; ++r)
-  {
-    size[r] = static_cast<itk::SizeValueType>(dims[r]);
-    for (int c = 0; c < 3; ++c)
-    {
-      direction[r][c] = m ? m->GetElement(r, c) : (r == c ? 1.0 : 0.0);
-    }
-  }
-  region.SetSize(size);
-  importer->SetRegion(region);
-  importer->SetOrigin(origin);
-  importer->SetSpacing(spacing);
-  importer->SetDirection(direction);
-  importer->SetImportPointer(
-    data, static_cast<itk::SizeValueType>(dims[0]) * dims[1] * dims[2], false);
-  importer->Update();
-  return importer->GetOutput();
-}
-
-/// The volume in [lower, upper] as the foreground the raw path's sections are taken of (typed
-/// lookups; other scalar types through vtkDataArray).
-vtouch::SectionForeground rangeForeground(vtkDataArray* scalars,
-  std::array<std::int64_t, 3> dims,
-  double lower,
-  double upper)
-{
-  vtouch::SectionForeground fg;
-  fg.dims = dims;
-  const auto typed = [&](auto* data)
-  {
-    fg.inside = [data, lower, upper](std::uint64_t lin)
-    {
-      const double v = static_cast<double>(data[lin]);
-      return v >= lower && v <= upper;
-    };
-  };
-  void* data = scalars->GetVoidPointer(0);
-  switch (scalars->GetDataType())
-  {
-    case VTK_FLOAT:
-      typed(static_cast<const float*>(data));
-      break;
-    case VTK_DOUBLE:
-      typed(static_cast<const double*>(data));
-      break;
-    case VTK_UNSIGNED_CHAR:
-      typed(static_cast<const unsigned char*>(data));
-      break;
-    case VTK_SHORT:
-      typed(static_cast<const short*>(data));
-      break;
-    case VTK_UNSIGNED_SHORT:
-      typed(static_cast<const unsigned short*>(data));
-      break;
-    default:
-      fg.inside = [scalars, lower, upper](std::uint64_t lin)
-      {
-        const double v = scalars->GetComponent(static_cast<vtkIdType>(lin), 0);
-        return v >= lower && v <= upper;
-      };
-  }
-  return fg;
-}
-
-/// Runs the ITK filter; throws itk::ExceptionObject (itk::ProcessAborted when aborted).
-/// `stageSeconds` receives the filter's and the coder's stage times (mask, scale, the coder's
-/// stages, geometry).
-template<typename T>
-vtouch::QSkeleton skeletonize(vtkImageData* image,
-  T* data,
-  const Settings& s,
-  int& factorUsed,
-  std::vector<std::pair<std::string, double>>& stageSeconds)
-{
-  using Image = itk::Image<T, 3>;
-  using Filter = vtouch::VoxelCodingSkeletonFilter<Image>;
-  typename Image::Pointer itkImage = importImage<T>(image, data);
-  auto filter = Filter::New();
-  filter->SetInput(itkImage);
-  filter->SetLowerThreshold(s.lower);
-  filter->SetUpperThreshold(s.upper);
-  if (s.useSeed)
-  {
-    typename Filter::PointType p;
-    p[0] = s.seed[0];
-    p[1] = s.seed[1];
-    p[2] = s.seed[2];
-    filter->SetSeedPoint(p);
-  }
-  filter->SetMinimumComponentSize(static_cast<unsigned long>(std::max(0, s.minimumComponentSize)));
-  filter->SetMinimumBranchLength(s.minimumBranchLength);
-  filter->SetSmoothingWindow(s.smoothing);
-  filter->SetUseVesselness(s.useVesselness);
-  filter->SetVesselnessSigmaMinimum(s.sigmaMin);
-  filter->SetVesselnessSigmaMaximum(s.sigmaMax);
-  filter->SetVesselnessNumberOfScales(static_cast<unsigned int>(std::max(0, s.scales)));
-  filter->SetVesselnessThreshold(s.vesselnessThreshold);
-  filter->SetDownsampleFactor(static_cast<unsigned int>(std::max(0, s.downsampleFactor)));
-  filter->SetVesselMask(s.mask);
-  if (s.globalSeedCode)
-  {
-    filter->SetGlobalSeedCode(s.globalSeedCode);
-  }
-  // Progress to VTK; VTK's abort flag and the cancel flag to ITK (on the thread that runs the
-  // filter: ITK invokes progress events on the thread that called Update()).
-  auto progress = itk::CStyleCommand::New();
-  struct Context
-  {
-    const Settings* settings;
-    Filter* filter;
-  } context{ &s, filter.GetPointer() };
-  progress->SetClientData(&context);
-  progress->SetCallback(
-    [](itk::Object*, const itk::EventObject&, void* data)
-    {
-      auto* c = static_cast<Context*>(data);
-      if (c->settings->progress && !c->settings->progress(c->filter->GetProgress()))
-      {
-        c->filter->SetAbortGenerateData(true);
-      }
-    });
-  filter->AddObserver(itk::ProgressEvent(), progress);
-  filter->Update();
-  factorUsed = static_cast<int>(filter->GetEffectiveDownsampleFactor());
-  stageSeconds = filter->GetRawSkeleton().stageSeconds;
-  return filter->GetSkeleton();
-}
-
-void fillOutput(const vtouch::QSkeleton& s, vtkPolyData* output)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> lines;
-  vtkNew<vtkFloatArray> radius, tangent, curvature, torsion;
-  vtkNew<vtkUnsignedCharArray> label;
-  vtkNew<vtkIntArray> pathId, pointIndex;
-  radius->SetName("Radius");
-  tangent->SetName("Tangent");
-  tangent->SetNumberOfComponents(3);
-  curvature->SetName("Curvature");
-  torsion->SetName("Torsion");
-  label->SetName("BifurcationLabel");
-  pathId->SetName("PathId");
-  pointIndex->SetName("PointIndex");
-  for (const vtouch::SkeletonPath& path : s.paths)
-  {
-    lines->InsertNextCell(static_cast<vtkIdType>(path.points.size()));
-    for (std::size_t i = 0; i < path.points.size(); ++i)
-    {
-      const vtouch::SkeletonPoint& q = path.points[i];
-      lines->InsertCellPoint(points->InsertNextPoint(
-        q.position_World_mm.x, q.position_World_mm.y, q.position_World_mm.z));
-      radius->InsertNextValue(static_cast<float>(q.radius_mm));
-      tangent->InsertNextTuple3(q.tangent_World.x, q.tangent_World.y, q.tangent_World.z);
-      curvature->InsertNextValue(static_cast<float>(q.curvature_per_mm));
-      torsion->InsertNextValue(static_cast<float>(q.torsion_per_mm));
-      label->InsertNextValue(static_cast<unsigned char>(q.label));
-      pathId->InsertNextValue(path.id);
-      pointIndex->InsertNextValue(static_cast<int>(i));
-    }
-  }
-  output->SetPoints(points);
-  output->SetLines(lines);
-  vtkPointData* pd = output->GetPointData();
-  for (vtkDataArray* a :
-    std::vector<vtkDataArray*>{ radius, tangent, curvature, torsion, label, pathId, pointIndex })
-  {
-    pd->AddArray(a);
-  }
-  const auto intArray = [](const char* name)
-  {
-    vtkNew<vtkIntArray> a;
-    a->SetName(name);
-    return a;
-  };
-  auto head = intArray("PathHeadJunction");
-  auto tail = intArray("PathTailJunction");
-  for (const vtouch::SkeletonPath& path : s.paths)
-  {
-    head->InsertNextValue(path.head.junction);
-    tail->InsertNextValue(path.tail.junction);
-  }
-  auto child = intArray("JunctionChildPath");
-  auto childEnd = intArray("JunctionChildEnd");
-  auto parent = intArray("JunctionParentPath");
-  auto parentPoint = intArray("JunctionParentPoint");
-  for (const vtouch::Junction& j : s.junctions)
-  {
-    child->InsertNextValue(j.childPath);
-    childEnd->InsertNextValue(j.childEnd == vtouch::Junction::End::Tail ? 1 : 0);
-    parent->InsertNextValue(j.parentPath);
-    parentPoint->InsertNextValue(j.parentPoint);
-  }
-  vtkFieldData* fd = output->GetFieldData();
-  for (vtkIntArray* a :
-    { head.Get(), tail.Get(), child.Get(), childEnd.Get(), parent.Get(), parentPoint.Get() })
-  {
-    fd->AddArray(a);
-  }
-}
-} // namespace
 
 vtkVesselTouchCenterlineFilter::vtkVesselTouchCenterlineFilter()
 {
@@ -527,7 +290,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   }
   // Distributed seeded modes: the coder codes with the global SS field, whose root is the seed.
   vtouch::DistributedSeededCode* global = this->DistributedSeedCode;
-  const Settings s{ lower,
+  const vtouch::CoderSettings s{ lower,
     upper,
     this->UseSeedPoint && codeFromSeed && !global,
     { seed[0], seed[1], seed[2] },
@@ -553,37 +316,10 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
            : std::function<std::vector<float>(vtouch::SparseVesselMask&)>() };
   try
   {
-    vtouch::QSkeleton skeleton;
-    int factorUsed = 0;
-    std::vector<std::pair<std::string, double>> coderSeconds;
-    void* data = scalars->GetVoidPointer(0);
-    switch (scalars->GetDataType())
-    {
-      case VTK_FLOAT:
-        skeleton = skeletonize(input, static_cast<float*>(data), s, factorUsed, coderSeconds);
-        break;
-      case VTK_UNSIGNED_CHAR:
-        skeleton =
-          skeletonize(input, static_cast<unsigned char*>(data), s, factorUsed, coderSeconds);
-        break;
-      case VTK_SHORT:
-        skeleton = skeletonize(input, static_cast<short*>(data), s, factorUsed, coderSeconds);
-        break;
-      case VTK_UNSIGNED_SHORT:
-        skeleton =
-          skeletonize(input, static_cast<unsigned short*>(data), s, factorUsed, coderSeconds);
-        break;
-      default:
-      {
-        // Other types: one float copy of the volume.
-        std::vector<float> copy(static_cast<std::size_t>(scalars->GetNumberOfTuples()));
-        for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-        {
-          copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
-        }
-        skeleton = skeletonize(input, copy.data(), s, factorUsed, coderSeconds);
-      }
-    }
+    vtouch::CoderRun coded = vtouch::skeletonizeVolume(input, scalars, s);
+    vtouch::QSkeleton& skeleton = coded.skeleton;
+    const int factorUsed = coded.factorUsed;
+    const std::vector<std::pair<std::string, double>>& coderSeconds = coded.stageSeconds;
     if (this->CancelRequested())
     {
       return cancelled();
@@ -609,7 +345,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
       // Sections of the volume in the range (not of the candidate region: the neck cut keeps
       // a plate's rims, which are bars of their own; the plate around them shows in the image).
       const vtouch::SectionForeground inRange =
-        rangeForeground(scalars, { dims[0], dims[1], dims[2] }, lower, upper);
+        vtouch::rangeForeground(scalars, { dims[0], dims[1], dims[2] }, lower, upper);
       const vtouch::RawSkeletonRefinement refined =
         vtouch::RawSkeletonRefinement::apply(skeleton, inRange, geometry, this->SmoothingWindow);
       candidateSeconds.emplace_back("tubeTrack", refined.trackSeconds);
@@ -627,7 +363,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
       removed->InsertNextValue(refined.pruned.pathsRemoved);
       output->GetFieldData()->AddArray(removed);
     }
-    fillOutput(skeleton, output);
+    vtouch::qSkeletonToPolyData(skeleton, output);
     // Which scale the default (automatic) DownsampleFactor chose: 1 = full resolution.
     vtkNew<vtkIntArray> used;
     used->SetName("DownsampleFactorUsed");
@@ -697,7 +433,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     range[1] = this->IntensityRangeUsed[1];
     message = this->ExtractionMessage;
   };
-  hooks.fill = fillOutput;
+  hooks.fill = vtouch::qSkeletonToPolyData;
   hooks.ghostMarginVoxels = [this](const double spacing[3])
   { return this->GetGhostMarginVoxels(spacing); };
   hooks.automaticIntensityRange = this->AutomaticIntensityRange;

@@ -1,6 +1,7 @@
 // PolyDataToQSkeleton: the two centerline encodings of the plugin (VesselCenterline with its
 // topology in field data, VesselPhantom's analytic polylines without) back to a QSkeleton.
 #include "vtouchPolyDataToQSkeleton.h"
+#include "vtouchQSkeletonToPolyData.h"
 
 #include "vtouchPhantomGenerator.h"
 
@@ -35,70 +36,12 @@ QSkeleton phantomSkeleton(PhantomShape shape)
   return phantom.centerline();
 }
 
-/// The encoding of vtkVesselTouchCenterlineFilter (one polyline per path, arrays, topology).
+/// The encoding of vtkVesselTouchCenterlineFilter (one polyline per path, arrays, topology):
+/// its own encoder, so that these tests are a round trip.
 vtkNew<vtkPolyData> centerlineEncoding(const QSkeleton& s)
 {
   vtkNew<vtkPolyData> out;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> lines;
-  vtkNew<vtkFloatArray> radius, tangent, curvature, torsion;
-  vtkNew<vtkUnsignedCharArray> label;
-  radius->SetName("Radius");
-  tangent->SetName("Tangent");
-  tangent->SetNumberOfComponents(3);
-  curvature->SetName("Curvature");
-  torsion->SetName("Torsion");
-  label->SetName("BifurcationLabel");
-  for (const SkeletonPath& path : s.paths)
-  {
-    lines->InsertNextCell(static_cast<vtkIdType>(path.points.size()));
-    for (const SkeletonPoint& q : path.points)
-    {
-      lines->InsertCellPoint(points->InsertNextPoint(
-        q.position_World_mm.x, q.position_World_mm.y, q.position_World_mm.z));
-      radius->InsertNextValue(static_cast<float>(q.radius_mm));
-      tangent->InsertNextTuple3(q.tangent_World.x, q.tangent_World.y, q.tangent_World.z);
-      curvature->InsertNextValue(static_cast<float>(q.curvature_per_mm));
-      torsion->InsertNextValue(static_cast<float>(q.torsion_per_mm));
-      label->InsertNextValue(static_cast<unsigned char>(q.label));
-    }
-  }
-  out->SetPoints(points);
-  out->SetLines(lines);
-  for (vtkDataArray* a : { static_cast<vtkDataArray*>(radius),
-         static_cast<vtkDataArray*>(tangent),
-         static_cast<vtkDataArray*>(curvature),
-         static_cast<vtkDataArray*>(torsion),
-         static_cast<vtkDataArray*>(label) })
-  {
-    out->GetPointData()->AddArray(a);
-  }
-  const auto add = [&out](const char* name)
-  {
-    vtkNew<vtkIntArray> a;
-    a->SetName(name);
-    out->GetFieldData()->AddArray(a);
-    return a.Get();
-  };
-  vtkIntArray* head = add("PathHeadJunction");
-  vtkIntArray* tail = add("PathTailJunction");
-  vtkIntArray* child = add("JunctionChildPath");
-  vtkIntArray* childEnd = add("JunctionChildEnd");
-  vtkIntArray* parent = add("JunctionParentPath");
-  vtkIntArray* parentPoint = add("JunctionParentPoint");
-  for (const SkeletonPath& path : s.paths)
-  {
-    head->InsertNextValue(path.head.junction);
-    tail->InsertNextValue(path.tail.junction);
-  }
-  for (const Junction& j : s.junctions)
-  {
-    child->InsertNextValue(j.childPath);
-    childEnd->InsertNextValue(j.childEnd == Junction::End::Tail ? 1 : 0);
-    parent->InsertNextValue(j.parentPath);
-    parentPoint->InsertNextValue(j.parentPoint);
-  }
+  qSkeletonToPolyData(s, out);
   return out;
 }
 
