@@ -2,7 +2,7 @@
 // rules): the section rays, the tube's centre in a section, following a tube across a contact
 // (vtouchTubeSectionFollower.cxx), a path's sections judged (phase 1,
 // vtouchTubeSectionJudgement.cxx) and its stretches re-traced (phase 2,
-// vtouchTubeSectionRetrace.cxx), and removing clutter stretches from a skeleton
+// vtouchTubeSectionRetrace.cxx: a PathRetracer, vtouchTubeSectionRetracer.h), and removing clutter stretches from a skeleton
 // (vtouchTubeSectionCutting.cxx).
 #pragma once
 

@@ -1,0 +1,104 @@
+// PathRetracer's cutting (vtouchTubeSectionRetracer.h; rule 4 of vtouchTubeSectionTracker.h): a
+// stretch no track crossed, planned for removal when it is clutter.
+#include "vtouchTubeSectionRetracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace vtouch
+{
+namespace tube_sections
+{
+namespace
+{
+double trackLength_mm(const Track& tr)
+{
+  double l = 0.0;
+  for (std::size_t q = 1; q < tr.centres.size(); ++q)
+  {
+    l += (tr.centres[q] - tr.centres[q - 1]).norm();
+  }
+  return l;
+}
+} // namespace
+
+/// The stretch [j, k), not re-traced. Clutter when its sections are wide (a plate's or a blob's,
+/// not a thin vessel's noisy wall) and either mostly not round (a plate's band) or wider than the
+/// tube it left (a blob), over more than the structure's diameter + 2 voxels: a junction's
+/// elongated sections reach about a radius of the larger vessel on either side of it, and no
+/// more. (Project rule, issue 16 items 2 and 5; Docs/CENTERLINES.md step 4.)
+void PathRetracer::planClutterCut(int j,
+  int k,
+  const StretchTracks& tracks,
+  std::vector<RetracePlan>& plans)
+{
+  std::vector<double> widths;
+  int notRound = 0;
+  for (int q = j; q < k; ++q)
+  {
+    widths.push_back(sec[static_cast<std::size_t>(q)].s);
+    notRound += sec[static_cast<std::size_t>(q)].round ? 0 : 1;
+  }
+  const double width = median(widths);
+  const double length = (arc[static_cast<std::size_t>(std::min(k, n - 1))] -
+                         arc[static_cast<std::size_t>(std::max(j - 1, 0))]);
+  // The tube it left: the clean points' radius on either side (NaN at a free end).
+  double tube = std::numeric_limits<double>::quiet_NaN();
+  for (const double r :
+    { j >= 1 ? tubeRadius(j - 1, k) : tube, k <= n - 1 ? tubeRadius(k, j - 1) : tube })
+  {
+    tube = std::isfinite(r) && !(r >= tube) ? r : tube; // the smaller one
+  }
+  const bool wider = std::isfinite(tube) &&
+                     width > tube + std::max(s.radiusExcess_voxels, s.radiusExcessFraction * tube);
+  // It does not reach a junction between two vessels, where the other vessel's lumen
+  // legitimately elongates the sections.
+  bool nearJunction = false;
+  for (const int q : realJunctionPoints[pi])
+  {
+    nearJunction = nearJunction || (q >= j - 1 && q <= k);
+  }
+  if (nearJunction || k - j < s.clutterMinimumPoints || !(2 * notRound >= k - j || wider) ||
+      !(width >= s.clutterMinimumWidth_voxels) || !(length > width + 2.0))
+  {
+    return;
+  }
+  RetracePlan cut;
+  cut.first = j;
+  cut.last = k - 1;
+  cut.radiusFrom_mm = path.points[static_cast<std::size_t>(std::max(j - 1, 0))].radius_mm;
+  cut.radiusTo_mm = path.points[static_cast<std::size_t>(std::min(k, n - 1))].radius_mm;
+  cut.remove = true;
+  // Where a track from an anchor followed the tube on beyond a junction's reach (the coder's
+  // path left the tube for the clutter), the tube's track stays: the piece before the cut ends,
+  // and the piece after it starts, where the tube stops.
+  const Track& forwardTrack = tracks.forward;
+  const Track& backwardTrack = tracks.backward;
+  const double rBackward = tracks.rBackward_voxels;
+  if (j >= 1 && forwardTrack.centres.size() > 1 &&
+      trackLength_mm(forwardTrack) > 2.0 * (tubeRadius(j - 1, k) + 1.0) * voxel)
+  {
+    cut.before = resampled(forwardTrack.centres.front(),
+      std::vector<Vec3>(forwardTrack.centres.begin() + 1, forwardTrack.centres.end()),
+      nullptr,
+      voxel);
+  }
+  if (k <= n - 1 && backwardTrack.centres.size() > 1 && std::isfinite(rBackward) &&
+      trackLength_mm(backwardTrack) > 2.0 * (rBackward + 1.0) * voxel)
+  {
+    cut.after = resampled(backwardTrack.centres.front(),
+      std::vector<Vec3>(backwardTrack.centres.begin() + 1, backwardTrack.centres.end()),
+      nullptr,
+      voxel);
+    std::reverse(cut.after.begin(), cut.after.end());
+  }
+  plans.push_back(std::move(cut));
+  ++result.stretchesCut;
+}
+
+} // namespace tube_sections
+} // namespace vtouch
