@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <queue>
 #include <unordered_map>
@@ -19,10 +20,14 @@ namespace
 constexpr float kInf = VoxelCodes::kInf;
 } // namespace
 
-LoopStage::LoopStage(SkeletonTracer& t, double minimumBranchLength_radii, std::size_t first)
+LoopStage::LoopStage(SkeletonTracer& t,
+  double minimumBranchLength_radii,
+  std::size_t first,
+  bool entriesEndLegs)
   : tracer(t)
   , minimumBranchLength(minimumBranchLength_radii)
   , firstPath(first)
+  , legsEndAtEntries(entriesEndLegs)
 {
 }
 
@@ -94,16 +99,26 @@ void LoopStage::closeLoops()
       const double margin = 2.0 * radius + 2.0 * grid.bandWidth;
       const float ignoreAbove = codes.ss[grid.mask.rank(start)] - static_cast<float>(margin);
       const Trace b = tracer.descend(start, ignoreAbove, tracer.patienceFor(clusters[p]));
-      if (b.path < 0 || b.voxels.empty())
+      if (b.voxels.empty())
+      {
+        continue;
+      }
+      // The global-field mode: B reached no path and ends where a vessel enters the piece (an SS
+      // minimum out of the root band, where the single run's B would have gone on to the root).
+      const bool toEntry = b.path < 0 && legsEndAtEntries &&
+                           codes.ss[grid.mask.rank(b.voxels.back())] >= grid.bandWidth;
+      if (b.path < 0 && !toEntry)
       {
         continue;
       }
       const double drop =
         codes.ss[grid.mask.rank(start)] - codes.ss[grid.mask.rank(b.voxels.back())];
       const double length = a.length + b.length + distance(aEnd, grid.centerOf(start));
-      // Both sides arriving at one place of the skeleton are one front too.
-      const double apart =
-        distance(out.paths[a.path].center_mm[a.point], out.paths[b.path].center_mm[b.point]);
+      // Both sides arriving at one place of the skeleton are one front too (an entry is no place
+      // of the skeleton: B arrived apart from A).
+      const double apart = toEntry ? std::numeric_limits<double>::infinity()
+                                   : distance(out.paths[a.path].center_mm[a.point],
+                                       out.paths[b.path].center_mm[b.point]);
       if (drop < margin + std::max(3.0 * grid.bandWidth, radius) || apart < margin ||
           length < minimumBranchLength * radius)
       {
@@ -122,6 +137,12 @@ void LoopStage::closeLoops()
       joined.point = a.point;
       joined.voxels.assign(b.voxels.rbegin(), b.voxels.rend());
       joined.voxels.insert(joined.voxels.end(), a.voxels.begin(), a.voxels.end());
+      if (toEntry)
+      {
+        // Its tail is the entry: a cut end at the face when the cluster touches the border.
+        tracer.emitPath(joined, clusters[tracer.clusterOf(b.voxels.back())].onBorder, -1, -1);
+        continue;
+      }
       tracer.emitPath(joined, false, b.path, b.point);
       ++out.loops;
     }

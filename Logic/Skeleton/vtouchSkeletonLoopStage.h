@@ -22,7 +22,17 @@ namespace skeleton
 class LoopStage
 {
 public:
-  LoopStage(SkeletonTracer& tracer, double minimumBranchLength, std::size_t firstPath);
+  /// `legsEndAtEntries`: a piece coded with the global SS field (VoxelCodingParameters::
+  /// globalSs_mm) has local minima of SS where the vessels enter it (TraceStage's
+  /// onlyRootBandIsRoot); where two fronts that entered it apart meet inside it (a ring longer
+  /// than the piece), closeLoops()' second side descends to its entry on no path: it is kept as
+  /// a path attached where the fronts met, its end a cut end at the face for the stitch, which
+  /// closes the loop across the pieces. Off (the single run): a side that reaches no path is
+  /// dropped.
+  LoopStage(SkeletonTracer& tracer,
+    double minimumBranchLength,
+    std::size_t firstPath,
+    bool legsEndAtEntries = false);
 
   /// The three passes, in order.
   void run();
@@ -31,7 +41,9 @@ public:
   /// lower one not yet on the skeleton may be the other front: trace down from it (B) and, if the
   /// cluster itself is not on the skeleton, from the cluster too (A), and join the two traces into
   /// one path attached at both ends: a loop. A trace B that meets the skeleton as soon as touches
-  /// count is one front split by noise, not a loop.
+  /// count is one front split by noise, not a loop. With `legsEndAtEntries`, a trace B that ends
+  /// at an entry of the piece (an SS minimum out of the root band) on no path is kept, attached
+  /// at A only (RawSkeleton::loops does not count it: the loop closes in the stitch).
   void closeLoops();
 
   /// Where the two fronts of a ring met, a cluster touches the skeleton on both sides; when both
@@ -62,6 +74,7 @@ private:
   SkeletonTracer& tracer;
   double minimumBranchLength; // in local radii
   std::size_t firstPath;      // the component's first path
+  bool legsEndAtEntries;      // the global-field mode (see the constructor)
 };
 
 } // namespace skeleton

@@ -129,11 +129,12 @@ void VoxelCoder::Impl::traceComponent()
 {
   const skeleton::StageTimer timer{ meter, "trace(all)" };
   const std::size_t firstPath = draft.skeleton.paths.size();
-  if (skeleton::TraceStage(tracer, par.minimumBranchLength, par.globalSs_mm != nullptr).run() == 0)
+  const bool globalField = par.globalSs_mm != nullptr;
+  if (skeleton::TraceStage(tracer, par.minimumBranchLength, globalField).run() == 0)
   {
     return;
   }
-  skeleton::LoopStage(tracer, par.minimumBranchLength, firstPath).run();
+  skeleton::LoopStage(tracer, par.minimumBranchLength, firstPath, globalField).run();
   skeleton::EndStage(grid, par.minimumBranchLength, draft, firstPath).run();
   skeleton::GeometryStage(draft.skeleton, firstPath, grid.minSpacing).run();
 }
