@@ -214,6 +214,9 @@ ChainEnds walkChain(const std::vector<SkeletonFragment>& f,
 }
 
 /// The nearest point of `s` to `p` but path `self`'s points within 2 of index `selfPoint`.
+/// Among points at the same distance (the coder writes a path's last point twice where a child
+/// hangs on it), a path's end wins (a project rule): the single run hangs the child on the end,
+/// and a child hung one point before it would leave that end a free vessel end.
 bool nearestPoint(const QSkeleton& s,
   const Vec3& p,
   int self,
@@ -223,6 +226,7 @@ bool nearestPoint(const QSkeleton& s,
   double& d)
 {
   d = std::numeric_limits<double>::infinity();
+  bool atEnd = false;
   for (const SkeletonPath& candidate : s.paths)
   {
     for (std::size_t i = 0; i < candidate.points.size(); ++i)
@@ -232,11 +236,13 @@ bool nearestPoint(const QSkeleton& s,
         continue;
       }
       const double di = (candidate.points[i].position_World_mm - p).norm();
-      if (di < d)
+      const bool end = i == 0 || i + 1 == candidate.points.size();
+      if (di < d || (di == d && end && !atEnd))
       {
         d = di;
         path = candidate.id;
         point = static_cast<int>(i);
+        atEnd = end;
       }
     }
   }

@@ -72,6 +72,41 @@ TEST(SkeletonStitcher, AJunctionRightOnAFaceKeepsItsParentPoint)
   EXPECT_TRUE(allPointsNear(s, whole, 1e-12) && allPointsNear(whole, s, 1e-12));
 }
 
+TEST(SkeletonStitcher, AChildOnAPathsRepeatedLastPointHangsOnTheEnd)
+{
+  // The coder writes a path's last point twice where a child hangs on it (the 256^3 tree seeded
+  // on 2 ranks): the child must hang on the end, as in the single run, not on the point before,
+  // which left the end a free vessel end (one end more than the single run).
+  QSkeleton whole;
+  std::vector<SkeletonPoint> trunk, branch, child;
+  for (int i = 0; i < 19; ++i)
+  {
+    trunk.push_back(point(1.0 + i, 10.0, 5.0)); // across the face x = 10
+  }
+  for (int i = 0; i < 7; ++i)
+  {
+    branch.push_back(point(5.0, 10.0 + i, 5.0));
+  }
+  branch.push_back(point(5.0, 16.0, 5.0)); // the repeated last point
+  for (int i = 0; i < 7; ++i)
+  {
+    child.push_back(point(5.0 + 0.6 * i, 16.0 + 0.5 * i, 5.0));
+  }
+  whole.paths.push_back(path(0, trunk));
+  whole.paths.push_back(path(1, branch));
+  whole.paths.push_back(path(2, child));
+  attach(whole, 1, Junction::End::Head, 0, 4);
+  attach(whole, 2, Junction::End::Head, 1, 7);
+  ASSERT_EQ(whole.validate(), "");
+  ASSERT_EQ(freeEnds(whole), 3);
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(report.attachmentsResolved, 2);
+  EXPECT_EQ(freeEnds(s), 3);
+  EXPECT_EQ(cycleRank(s), 0);
+}
+
 /// A ring of radius 7 around (10, 10, 5), from angle a0 to a1 (radians), 1 point per ~0.7 mm.
 std::vector<SkeletonPoint> arc(double a0, double a1)
 {
