@@ -2,6 +2,8 @@
 // (see the header for why every rank takes the same steps).
 #include "vtouchSeededDistributedCoding.h"
 
+#include "vtouchSeedVoxel.h"
+
 #include <limits>
 #include <memory>
 
@@ -62,34 +64,6 @@ SeededDistributedCoding::SeededDistributedCoding(RankCollectives& collectives,
   , Seed_Whole(seed_Whole)
   , Options(settings)
 {
-}
-
-std::array<std::int64_t, 3> SeededDistributedCoding::nearestVesselVoxel(
-  const SparseVesselMask& mask,
-  const std::array<std::int64_t, 3>& seed_Local)
-{
-  // VoxelCodingSkeletonFilter::SeedIndex's rule (a click may land a voxel off the vessel).
-  const std::array<std::int64_t, 3>& d = mask.dims();
-  double best = std::numeric_limits<double>::infinity();
-  std::array<std::int64_t, 3> found{ -1, -1, -1 };
-  for (int dk = -1; dk <= 1; ++dk)
-    for (int dj = -1; dj <= 1; ++dj)
-      for (int di = -1; di <= 1; ++di)
-      {
-        const std::int64_t i = seed_Local[0] + di, j = seed_Local[1] + dj, k = seed_Local[2] + dk;
-        if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2] ||
-            !mask.test(static_cast<std::uint64_t>(i + d[0] * (j + d[1] * k))))
-        {
-          continue;
-        }
-        const double dist = di * di + dj * dj + dk * dk;
-        if (dist < best)
-        {
-          best = dist;
-          found = { i, j, k };
-        }
-      }
-  return found;
 }
 
 std::vector<float> SeededDistributedCoding::code(SparseVesselMask& mask)

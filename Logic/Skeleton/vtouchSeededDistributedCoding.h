@@ -90,10 +90,6 @@ public:
   bool joined() const { return this->Joined; }
   const Report& report() const { return this->Result; }
 
-  /// The single run's root rule on a mask: the vessel voxel of `seed`'s 3 x 3 x 3 block nearest
-  /// its centre, as a local index of `mask`; { -1, -1, -1 } when the block holds none.
-  static std::array<std::int64_t, 3> nearestVesselVoxel(const SparseVesselMask& mask,
-    const std::array<std::int64_t, 3>& seed_Local);
 
 private:
   std::vector<float> take(SparseVesselMask& mask, bool usable);

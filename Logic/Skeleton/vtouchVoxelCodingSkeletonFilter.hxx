@@ -5,6 +5,7 @@
 #include "vtouchAutomaticDownsampling.h"
 #include "vtouchCoarseSkeletonRefiner.h"
 #include "vtouchCurveGeometry.h"
+#include "vtouchSeedVoxel.h"
 #include "vtouchSinglePointPaths.h"
 
 #include <itkCommand.h>
@@ -308,28 +309,11 @@ auto VoxelCodingSkeletonFilter<TInputImage>::SeedIndex(const SparseVesselMask& m
   {
     itkExceptionMacro("SeedPoint " << this->m_SeedPoint << " is outside the volume");
   }
-  const auto& d = mask.dims();
-  // A click may land a voxel off the vessel: accept the nearest vessel voxel of the 3x3x3 block.
-  double best = std::numeric_limits<double>::infinity();
-  IndexType found = index;
-  for (int dk = -1; dk <= 1; ++dk)
-    for (int dj = -1; dj <= 1; ++dj)
-      for (int di = -1; di <= 1; ++di)
-      {
-        const std::int64_t i = index[0] + di, j = index[1] + dj, k = index[2] + dk;
-        if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2] ||
-            !mask.test(static_cast<std::uint64_t>(i + d[0] * (j + d[1] * k))))
-        {
-          continue;
-        }
-        const double dist = di * di + dj * dj + dk * dk;
-        if (dist < best)
-        {
-          best = dist;
-          found = IndexType{ { i, j, k } };
-        }
-      }
-  if (!std::isfinite(best))
+  // A click may land a voxel off the vessel: the nearest vessel voxel of the 3x3x3 block.
+  const std::array<std::int64_t, 3> near =
+    nearestVesselVoxel(mask, { index[0], index[1], index[2] });
+  const IndexType found{ { near[0], near[1], near[2] } };
+  if (near[0] < 0)
   {
     itkExceptionMacro("SeedPoint " << this->m_SeedPoint << " (voxel " << index
                                    << ") is not inside any vessel: its value is outside ["

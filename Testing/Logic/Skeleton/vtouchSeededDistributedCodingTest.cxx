@@ -3,6 +3,7 @@
 // single run's root; a rank whose run stopped before its coder joins and nobody waits; every
 // failure is a verdict every rank reaches together; the coder's hook in VoxelCodingSkeletonFilter.
 #include "vtouchSeededDistributedCoding.h"
+#include "vtouchSeedVoxel.h"
 #include "vtouchSinglePointPaths.h"
 
 #include "vtouchInProcessCollectives.h"
@@ -79,7 +80,7 @@ TEST(SeededDistributedCoding, EveryRankGetsTheSingleRunsFieldFromASeedOffTheVess
   // onto the nearest vessel voxel of its block, (23, 10, 10).
   const std::array<std::int64_t, 3> seed{ 24, 10, 10 };
   const std::array<std::int64_t, 3> root{ 23, 10, 10 };
-  ASSERT_EQ(SeededDistributedCoding::nearestVesselVoxel(whole, seed), root);
+  ASSERT_EQ(nearestVesselVoxel(whole, seed), root);
   const std::vector<float> single = singleRun(whole, root);
   for (const std::array<int, 3>& counts :
     { std::array<int, 3>{ 2, 1, 1 }, std::array<int, 3>{ 2, 2, 1 }, std::array<int, 3>{ 1, 4, 1 } })
