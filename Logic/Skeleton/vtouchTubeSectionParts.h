@@ -1,8 +1,8 @@
 // TubeSectionTracker's parts (internal to Logic/Skeleton; see vtouchTubeSectionTracker.h for the
 // rules): the section rays, the tube's centre in a section, following a tube across a contact
 // (vtouchTubeSectionFollower.cxx), a path's sections judged (phase 1,
-// vtouchTubeSectionJudgement.cxx) and its stretches re-traced (phase 2,
-// vtouchTubeSectionRetrace.cxx: a PathRetracer, vtouchTubeSectionRetracer.h), and removing clutter stretches from a skeleton
+// vtouchTubeSectionJudgement.cxx) and its stretches re-traced (phase 2: a PathRetracer,
+// vtouchTubeSectionRetracer.h), and removing clutter stretches from a skeleton
 // (vtouchTubeSectionCutting.cxx).
 #pragma once
 
@@ -136,19 +136,6 @@ PathJudgement judgePath(const SkeletonPath& path,
   const SectionSampler& sampler,
   const TubeSectionTracker::Settings& s,
   TubeSectionTracker::Result& counts);
-
-/// Phase 2 (the header's 2-4) on path `pi`: its stretches re-traced in place (paths joined inside
-/// one moved onto the track); the clutter stretches to remove go to `clutterCuts[pi]`.
-void retracePath(QSkeleton& skeleton,
-  std::size_t pi,
-  std::vector<PathJudgement>& judged,
-  const std::vector<std::vector<int>>& realJunctionPoints,
-  const std::vector<Zone>& zones,
-  const SectionSampler& sampler,
-  double largestSpacing,
-  const TubeSectionTracker::Settings& s,
-  TubeSectionTracker::Result& result,
-  std::vector<std::vector<std::pair<int, int>>>& clutterCuts);
 
 } // namespace tube_sections
 } // namespace vtouch

@@ -1,8 +1,7 @@
-// TubeSectionTracker's phase 2 (vtouchTubeSectionParts.h): a path's stretches re-traced along the
-// tube, or planned as clutter to cut (the rules in vtouchTubeSectionTracker.h, 2-4). Here: the
-// entry point, and the stretches found and planned in turn (rule 2); the phases it calls are
-// listed in vtouchTubeSectionRetracer.h.
-#include "vtouchTubeSectionParts.h"
+// TubeSectionTracker's phase 2 (vtouchTubeSectionRetracer.h): a path's stretches re-traced along
+// the tube, or planned as clutter to cut (the rules in vtouchTubeSectionTracker.h, 2-4). Here:
+// PathRetracer's run, and the stretches found and planned in turn (rule 2); the phases it calls
+// are listed in vtouchTubeSectionRetracer.h.
 #include "vtouchTubeSectionRetracer.h"
 
 #include <algorithm>
@@ -15,38 +14,6 @@ namespace vtouch
 {
 namespace tube_sections
 {
-
-/// Phase 2 (the header's 2-4) on path `pi`: its stretches re-traced in place (paths joined inside
-/// one moved onto the track); the clutter stretches to remove go to `clutterCuts[pi]`.
-void retracePath(QSkeleton& skeleton,
-  std::size_t pi,
-  std::vector<PathJudgement>& judged,
-  const std::vector<std::vector<int>>& realJunctionPoints,
-  const std::vector<Zone>& zones,
-  const SectionSampler& sampler,
-  double largestSpacing,
-  const TubeSectionTracker::Settings& s,
-  TubeSectionTracker::Result& result,
-  std::vector<std::vector<std::pair<int, int>>>& clutterCuts)
-{
-  const int n = static_cast<int>(skeleton.paths[pi].points.size());
-  result.sections[pi].assign(static_cast<std::size_t>(n), TubeSectionTracker::Section::Junction);
-  if (n < 3)
-  {
-    return;
-  }
-  PathRetracer(skeleton,
-    pi,
-    judged[pi],
-    realJunctionPoints,
-    zones,
-    sampler,
-    largestSpacing,
-    s,
-    result,
-    clutterCuts)
-    .run();
-}
 
 namespace
 {
@@ -94,6 +61,11 @@ PathRetracer::PathRetracer(QSkeleton& skeleton_,
 
 void PathRetracer::run()
 {
+  status.assign(static_cast<std::size_t>(n), Section::Junction);
+  if (n < 3)
+  {
+    return; // no stretch between two anchors, nor a free end with an anchor before it
+  }
   setJudgedSections();
   std::vector<RetracePlan> plans;
   planStretches(plans);
@@ -179,11 +151,11 @@ void PathRetracer::planStretches(std::vector<RetracePlan>& plans)
     }
     else if (freeTail && j >= 1)
     {
-      planFreeTail(j, stretchLength_mm, plans);
+      planFreeEnd(j - 1, +1, stretchLength_mm, plans);
     }
     else if (freeHead && k <= n - 1)
     {
-      planFreeHead(k, stretchLength_mm, plans);
+      planFreeEnd(k, -1, stretchLength_mm, plans);
     }
     if (plans.size() == plansBefore)
     {

@@ -1,12 +1,13 @@
 // TubeSectionTracker's phase 2 on one path (internal to Logic/Skeleton; the rules are in
 // vtouchTubeSectionTracker.h, 2-4, and Docs/CENTERLINES.md, "Raw angiograms", step 4): the
 // path's stretches found, each re-traced along the tube or planned as clutter to cut, and the
-// plans applied to the path. retracePath (vtouchTubeSectionParts.h) runs one PathRetracer.
+// plans applied to the path. TubeSectionTracker runs one PathRetracer per path.
 // The phases, one file each:
 //  - the section queries a phase asks (anchors, the tube's radius, a track's heading, wider than
 //    the tube, lone clean points, junctions a track reached): vtouchTubeSectionRetracerQueries.cxx;
 //  - the stretches found and planned in turn (rule 2): vtouchTubeSectionRetrace.cxx;
-//  - a stretch re-traced by the tube's track (rule 3): vtouchTubeSectionRetracerTracks.cxx;
+//  - a stretch re-traced by the tube's track (rule 3; one function for either direction along
+//    the path): vtouchTubeSectionRetracerTracks.cxx;
 //  - a stretch no track crossed judged as clutter (rule 4): vtouchTubeSectionRetracerCut.cxx;
 //  - the plans applied and the path re-smoothed: vtouchTubeSectionRetracerApply.cxx.
 #pragma once
@@ -48,8 +49,7 @@ struct StretchTracks
   double rBackward_voxels = 0.0; ///< the backward track's tube radius (0: none was followed)
 };
 
-/// Phase 2 on path `pi` of `skeleton` (which must have >= 3 points). Constructed by retracePath;
-/// `run` once.
+/// Phase 2 on path `pi` of `skeleton` (TubeSectionTracker runs one per path); `run` once.
 class PathRetracer
 {
 public:
@@ -67,7 +67,8 @@ public:
     std::vector<std::vector<std::pair<int, int>>>& clutterCuts);
 
   /// Sets the path's sections (Clean / NotClean / Junction), plans its stretches and applies the
-  /// plans (the path's points, its sections, the junctions on it and `clutterCuts[pi]`).
+  /// plans (the path's points, its sections, the junctions on it and `clutterCuts[pi]`). A path
+  /// of fewer than 3 points is left as it is, its sections all Junction (not judged).
   void run();
 
 private:
@@ -94,8 +95,19 @@ private:
     double maxLength_mm,
     std::vector<RetracePlan>& plans,
     StretchTracks& tracks);
-  void planFreeTail(int j, double stretchLength_mm, std::vector<RetracePlan>& plans);
-  void planFreeHead(int k, double stretchLength_mm, std::vector<RetracePlan>& plans);
+  bool planTrackAcross(int from,
+    int sign,
+    int j,
+    int k,
+    double r,
+    double maxLength_mm,
+    std::vector<RetracePlan>& plans,
+    Track& kept);
+  RetracePlan trackPlan(int from, int to, int sign, const Track& tr, std::size_t lastCentre) const;
+  void planFreeEnd(int anchorIndex,
+    int sign,
+    double stretchLength_mm,
+    std::vector<RetracePlan>& plans);
 
   // --- Cutting (vtouchTubeSectionRetracerCut.cxx) ---
   void planClutterCut(int j, int k, const StretchTracks& tracks, std::vector<RetracePlan>& plans);

@@ -1,5 +1,7 @@
 // PathRetracer's re-tracing (vtouchTubeSectionRetracer.h; rule 3 of vtouchTubeSectionTracker.h):
-// a stretch replaced by the tube's own track, between two anchors or at a free end.
+// a stretch replaced by the tube's own track, between two anchors or at a free end. A track
+// runs from an anchor in a direction along the path (`sign`: +1 towards the tail, -1 towards
+// the head); one function serves both directions, the plans it makes are in the path's order.
 #include "vtouchTubeSectionRetracer.h"
 
 #include <algorithm>
@@ -27,110 +29,101 @@ void PathRetracer::planBetweenAnchors(int j,
   const double rForward = tubeRadius(a, b);
   if (std::isfinite(rForward) && rForward > 0.0)
   {
-    std::vector<Target> targets;
-    for (int q = k; q < n; ++q)
-    {
-      if (anchor(q))
-      {
-        targets.push_back({ q, path.points[static_cast<std::size_t>(q)].position_World_mm });
-      }
-    }
-    const Track tr = follow(sampler,
-      path.points[static_cast<std::size_t>(a)].position_World_mm,
-      heading(a, +1),
-      rForward,
-      targets,
-      zones,
-      maxLength_mm,
-      s);
-    tracks.forward = confirmedPart(tr); // kept beside a cut only as far as it is sure
-    if (tr.hit >= 0)
-    {
-      const Vec3 to = path.points[static_cast<std::size_t>(tr.hit)].position_World_mm;
-      std::vector<Vec3> via(tr.centres.begin() + 1, tr.centres.end());
-      plans.push_back({ a + 1,
-        tr.hit - 1,
-        resampled(path.points[static_cast<std::size_t>(a)].position_World_mm, via, &to, voxel),
-        path.points[static_cast<std::size_t>(a)].radius_mm,
-        path.points[static_cast<std::size_t>(tr.hit)].radius_mm });
-      done = true;
-    }
-    else if (const auto [q, c] = junctionReached(tr, a, +1, rForward); q >= 0)
-    {
-      const Vec3 to = path.points[static_cast<std::size_t>(q)].position_World_mm;
-      std::vector<Vec3> via(
-        tr.centres.begin() + 1, tr.centres.begin() + static_cast<std::ptrdiff_t>(c) + 1);
-      plans.push_back({ a + 1,
-        q - 1,
-        resampled(path.points[static_cast<std::size_t>(a)].position_World_mm, via, &to, voxel),
-        path.points[static_cast<std::size_t>(a)].radius_mm,
-        path.points[static_cast<std::size_t>(q)].radius_mm });
-      done = true;
-      ++result.stretchesEndedAtJunction;
-    }
+    done = planTrackAcross(a, +1, j, k, rForward, maxLength_mm, plans, tracks.forward);
   }
   tracks.rBackward_voxels = done ? 0.0 : tubeRadius(b, a);
   const double rBackward = tracks.rBackward_voxels;
   if (!done && std::isfinite(rBackward) && rBackward > 0.0)
   {
-    std::vector<Target> targets;
-    for (int q = j - 1; q >= 0; --q)
-    {
-      if (anchor(q))
-      {
-        targets.push_back({ q, path.points[static_cast<std::size_t>(q)].position_World_mm });
-      }
-    }
-    const Track tr = follow(sampler,
-      path.points[static_cast<std::size_t>(b)].position_World_mm,
-      heading(b, -1),
-      rBackward,
-      targets,
-      zones,
-      maxLength_mm,
-      s);
-    tracks.backward = confirmedPart(tr);
-    if (tr.hit >= 0)
-    {
-      const Vec3 to = path.points[static_cast<std::size_t>(b)].position_World_mm;
-      std::vector<Vec3> via(tr.centres.rbegin(), tr.centres.rend() - 1);
-      plans.push_back({ tr.hit + 1,
-        b - 1,
-        resampled(path.points[static_cast<std::size_t>(tr.hit)].position_World_mm, via, &to, voxel),
-        path.points[static_cast<std::size_t>(tr.hit)].radius_mm,
-        path.points[static_cast<std::size_t>(b)].radius_mm });
-      done = true;
-    }
-    else if (const auto [q, c] = junctionReached(tr, b, -1, rBackward); q >= 0)
-    {
-      const Vec3 to = path.points[static_cast<std::size_t>(b)].position_World_mm;
-      std::vector<Vec3> via(
-        tr.centres.rbegin() + static_cast<std::ptrdiff_t>(tr.centres.size() - 1 - c),
-        tr.centres.rend() - 1);
-      plans.push_back({ q + 1,
-        b - 1,
-        resampled(path.points[static_cast<std::size_t>(q)].position_World_mm, via, &to, voxel),
-        path.points[static_cast<std::size_t>(q)].radius_mm,
-        path.points[static_cast<std::size_t>(b)].radius_mm });
-      done = true;
-      ++result.stretchesEndedAtJunction;
-    }
+    done = planTrackAcross(b, -1, j, k, rBackward, maxLength_mm, plans, tracks.backward);
   }
   result.stretchesTracked += done ? 1 : 0;
 }
 
-/// A free tail [j, n) from its anchor j - 1: replaced as far as the tube goes for sure (at most
-/// the stretch's length + 1 voxel; confirmedPart: project rule, issue 16 item 5). Paths joined
-/// to it farther than 2 (r + 1) voxels from the track are detached when the plan is applied.
-void PathRetracer::planFreeTail(int j, double stretchLength_mm, std::vector<RetracePlan>& plans)
+/// The track of radius `r` (voxels) from anchor `from` in direction `sign` across the stretch
+/// [j, k), towards the anchors beyond it: planned up to the anchor it hits, else up to the
+/// junction it reached past clutter. Its confirmed part goes to `kept` (even when no plan is
+/// made). True when a plan was made.
+bool PathRetracer::planTrackAcross(int from,
+  int sign,
+  int j,
+  int k,
+  double r,
+  double maxLength_mm,
+  std::vector<RetracePlan>& plans,
+  Track& kept)
 {
-  const int a = j - 1;
-  const double r = tubeRadius(a, n - 1);
+  std::vector<Target> targets; // nearest first
+  for (int q = sign > 0 ? k : j - 1; q >= 0 && q < n; q += sign)
+  {
+    if (anchor(q))
+    {
+      targets.push_back({ q, path.points[static_cast<std::size_t>(q)].position_World_mm });
+    }
+  }
+  const Track tr = follow(sampler,
+    path.points[static_cast<std::size_t>(from)].position_World_mm,
+    heading(from, sign),
+    r,
+    targets,
+    zones,
+    maxLength_mm,
+    s);
+  kept = confirmedPart(tr); // kept beside a cut only as far as it is sure
+  if (tr.hit >= 0)
+  {
+    plans.push_back(trackPlan(from, tr.hit, sign, tr, tr.centres.size() - 1));
+    return true;
+  }
+  if (const auto [q, c] = junctionReached(tr, from, sign, r); q >= 0)
+  {
+    plans.push_back(trackPlan(from, q, sign, tr, c));
+    ++result.stretchesEndedAtJunction;
+    return true;
+  }
+  return false;
+}
+
+/// The points strictly between `from` and `to` replaced by the track's centres 1..lastCentre
+/// (centre 0 is the start, at `from`), resampled every voxel, in the path's order (a backward
+/// track's centres reversed); the radii run from the two ends'.
+RetracePlan PathRetracer::trackPlan(int from,
+  int to,
+  int sign,
+  const Track& tr,
+  std::size_t lastCentre) const
+{
+  std::vector<Vec3> via(
+    tr.centres.begin() + 1, tr.centres.begin() + static_cast<std::ptrdiff_t>(lastCentre) + 1);
+  if (sign < 0)
+  {
+    std::reverse(via.begin(), via.end());
+  }
+  const SkeletonPoint& first = path.points[static_cast<std::size_t>(std::min(from, to))];
+  const SkeletonPoint& last = path.points[static_cast<std::size_t>(std::max(from, to))];
+  return { std::min(from, to) + 1,
+    std::max(from, to) - 1,
+    resampled(first.position_World_mm, via, &last.position_World_mm, voxel),
+    first.radius_mm,
+    last.radius_mm };
+}
+
+/// A free end from its anchor (`sign` +1: the tail [anchorIndex + 1, n), -1: the head
+/// [0, anchorIndex)): replaced as far as the tube goes for sure (at most the stretch's length + 1
+/// voxel; confirmedPart: project rule, issue 16 item 5). Paths joined to it farther than
+/// 2 (r + 1) voxels from the track are detached when the plan is applied.
+void PathRetracer::planFreeEnd(int anchorIndex,
+  int sign,
+  double stretchLength_mm,
+  std::vector<RetracePlan>& plans)
+{
+  const double r = tubeRadius(anchorIndex, sign > 0 ? n - 1 : 0);
   if (std::isfinite(r) && r > 0.0)
   {
+    const SkeletonPoint& at = path.points[static_cast<std::size_t>(anchorIndex)];
     const Track full = follow(sampler,
-      path.points[static_cast<std::size_t>(a)].position_World_mm,
-      heading(a, +1),
+      at.position_World_mm,
+      heading(anchorIndex, sign),
       r,
       {},
       zones,
@@ -143,45 +136,17 @@ void PathRetracer::planFreeTail(int j, double stretchLength_mm, std::vector<Retr
     if (full.centres.size() > 1)
     {
       std::vector<Vec3> via(tr.centres.begin() + 1, tr.centres.end());
-      const double R = path.points[static_cast<std::size_t>(a)].radius_mm;
-      plans.push_back({ a + 1,
-        n - 1,
-        resampled(path.points[static_cast<std::size_t>(a)].position_World_mm, via, nullptr, voxel),
-        R,
-        R });
-      plans.back().freeEnd = +1;
-      plans.back().joinReach_mm = 2.0 * (r + 1.0) * voxel;
-      result.stretchesTracked += 1;
-    }
-  }
-}
-
-/// A free head [0, k) from its anchor k: as planFreeTail, the track reversed.
-void PathRetracer::planFreeHead(int k, double stretchLength_mm, std::vector<RetracePlan>& plans)
-{
-  const int b = k;
-  const double r = tubeRadius(b, 0);
-  if (std::isfinite(r) && r > 0.0)
-  {
-    const Track full = follow(sampler,
-      path.points[static_cast<std::size_t>(b)].position_World_mm,
-      heading(b, -1),
-      r,
-      {},
-      zones,
-      stretchLength_mm + voxel,
-      s);
-    const Track tr = confirmedPart(full);
-    result.freeEndsEndedWhereTubeLost += tr.centres.size() < full.centres.size() ? 1 : 0;
-    if (full.centres.size() > 1)
-    {
-      std::vector<Vec3> via(tr.centres.begin() + 1, tr.centres.end());
-      std::vector<Vec3> pts =
-        resampled(path.points[static_cast<std::size_t>(b)].position_World_mm, via, nullptr, voxel);
-      std::reverse(pts.begin(), pts.end());
-      const double R = path.points[static_cast<std::size_t>(b)].radius_mm;
-      plans.push_back({ 0, b - 1, pts, R, R });
-      plans.back().freeEnd = -1;
+      std::vector<Vec3> pts = resampled(at.position_World_mm, via, nullptr, voxel);
+      if (sign < 0)
+      {
+        std::reverse(pts.begin(), pts.end()); // in the path's order
+      }
+      plans.push_back({ sign > 0 ? anchorIndex + 1 : 0,
+        sign > 0 ? n - 1 : anchorIndex - 1,
+        pts,
+        at.radius_mm,
+        at.radius_mm });
+      plans.back().freeEnd = sign;
       plans.back().joinReach_mm = 2.0 * (r + 1.0) * voxel;
       result.stretchesTracked += 1;
     }

@@ -1,6 +1,7 @@
 #include "vtouchTubeSectionTracker.h"
 
 #include "vtouchTubeSectionParts.h"
+#include "vtouchTubeSectionRetracer.h"
 
 #include <algorithm>
 #include <array>
@@ -72,16 +73,17 @@ TubeSectionTracker::Result TubeSectionTracker::track(QSkeleton& skeleton,
   result.sections.resize(skeleton.paths.size());
   for (std::size_t pi = 0; pi < skeleton.paths.size(); ++pi)
   {
-    retracePath(skeleton,
+    PathRetracer(skeleton,
       pi,
-      judged,
+      judged[pi],
       realJunctionPoints,
       zones,
       sampler,
       largestSpacing,
       s,
       result,
-      clutterCuts);
+      clutterCuts)
+      .run();
   }
   result.junctionsDetached += cutStretches(skeleton, clutterCuts, result.sections);
   // Attached ends coincide with their parent points (as the filter leaves them).

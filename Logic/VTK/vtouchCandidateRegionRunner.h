@@ -3,6 +3,7 @@
 // the range it used and the user-facing message; and the field data both filters publish.
 #pragma once
 
+#include "vtouchTypedScalars.h"
 #include "vtouchVesselCandidateRegion.h"
 
 #include "vtkAlgorithm.h"
@@ -153,29 +154,8 @@ inline CandidateRegionOutcome runCandidateRegion(vtkImageData* image,
   vtkDataArray* scalars,
   const CandidateRegionRequest& request)
 {
-  void* data = scalars->GetVoidPointer(0);
-  switch (scalars->GetDataType())
-  {
-    case VTK_FLOAT:
-      return runCandidateRegion(image, static_cast<const float*>(data), request);
-    case VTK_DOUBLE:
-      return runCandidateRegion(image, static_cast<const double*>(data), request);
-    case VTK_UNSIGNED_CHAR:
-      return runCandidateRegion(image, static_cast<const unsigned char*>(data), request);
-    case VTK_SHORT:
-      return runCandidateRegion(image, static_cast<const short*>(data), request);
-    case VTK_UNSIGNED_SHORT:
-      return runCandidateRegion(image, static_cast<const unsigned short*>(data), request);
-    default:
-    {
-      std::vector<float> copy(static_cast<std::size_t>(scalars->GetNumberOfTuples()));
-      for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-      {
-        copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
-      }
-      return runCandidateRegion(image, copy.data(), request);
-    }
-  }
+  return withTypedScalars(
+    scalars, [&](const auto* voxels) { return runCandidateRegion(image, voxels, request); });
 }
 
 /// What the filters say when a run was cancelled (ExtractionMessage).

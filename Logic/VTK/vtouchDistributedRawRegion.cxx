@@ -6,6 +6,7 @@
 #include "vtouchDistributedCenterline.h"
 #include "vtouchDistributedSeededCode.h"
 #include "vtouchSeedComponentSplit.h"
+#include "vtouchTypedScalars.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -150,38 +151,11 @@ CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* cont
       break;
     }
   }
-  DistributedCandidateRegion::Result r;
-  void* data = usable ? scalars->GetVoidPointer(0) : nullptr;
-  switch (usable ? scalars->GetDataType() : VTK_FLOAT)
-  {
-    case VTK_FLOAT:
-      r = extractTyped(usable ? piece : nullptr, static_cast<const float*>(data), layout, seed, c);
-      break;
-    case VTK_DOUBLE:
-      r = extractTyped(usable ? piece : nullptr, static_cast<const double*>(data), layout, seed, c);
-      break;
-    case VTK_UNSIGNED_CHAR:
-      r = extractTyped(
-        usable ? piece : nullptr, static_cast<const unsigned char*>(data), layout, seed, c);
-      break;
-    case VTK_SHORT:
-      r = extractTyped(usable ? piece : nullptr, static_cast<const short*>(data), layout, seed, c);
-      break;
-    case VTK_UNSIGNED_SHORT:
-      r = extractTyped(
-        usable ? piece : nullptr, static_cast<const unsigned short*>(data), layout, seed, c);
-      break;
-    default:
-    {
-      // Other types: one float copy of the piece.
-      std::vector<float> copy(static_cast<std::size_t>(scalars->GetNumberOfTuples()));
-      for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-      {
-        copy[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetComponent(i, 0));
-      }
-      r = extractTyped(usable ? piece : nullptr, copy.data(), layout, seed, c);
-    }
-  }
+  // A rank without a usable piece joins the collectives with no voxels (as float).
+  DistributedCandidateRegion::Result r =
+    usable ? withTypedScalars(scalars,
+               [&](const auto* voxels) { return extractTyped(piece, voxels, layout, seed, c); })
+           : extractTyped(nullptr, static_cast<const float*>(nullptr), layout, seed, c);
   report.growthRounds = r.growthRounds;
   report.componentRounds = r.componentRounds;
   report.sentVoxels = static_cast<double>(r.reportedVoxels);

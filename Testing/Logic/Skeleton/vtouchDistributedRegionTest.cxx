@@ -4,7 +4,7 @@
 // candidate region against VesselCandidateRegion's single run, with its verdicts on every rank.
 #include "vtouchDistributedCandidateRegion.h"
 #include "vtouchDistributedRegionGrowth.h"
-#include "vtouchInProcessCollectives.h"
+#include "vtouchEveryRank.h"
 #include "vtouchPieceGrid.h"
 #include "vtouchRawAngiogramTestImages.h"
 #include "vtouchSeedComponentSplit.h"
@@ -13,7 +13,6 @@
 #include <gtest/gtest.h>
 #include <itkMultiThreaderBase.h>
 
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -21,7 +20,7 @@ namespace vtouch
 {
 namespace
 {
-using test::InProcessWorld;
+using test::onEveryRank;
 using test::SyntheticAngiogram;
 
 constexpr double kContrast = 900.0; // background 100, vessel 1000
@@ -45,27 +44,42 @@ std::vector<PieceLayout> layouts(std::array<std::int64_t, 3> dims, int ranks, in
   return test::layouts(dims, counts, margin);
 }
 
-/// A copy of the held box of `g` (the rank's piece, as a reader would give it).
-std::vector<float> pieceOf(const SyntheticAngiogram& g, const PieceLayout& l)
+/// Rank `l`'s piece of `g`: a copy of its held box (as a reader would give it) and the view of it.
+struct RankPiece
 {
-  const VoxelBox& b = l.mine();
-  std::vector<float> v;
-  for (std::int64_t k = b.lo[2]; k <= b.hi[2]; ++k)
-    for (std::int64_t j = b.lo[1]; j <= b.hi[1]; ++j)
-      for (std::int64_t i = b.lo[0]; i <= b.hi[0]; ++i)
-      {
-        v.push_back(g.voxels[static_cast<std::size_t>(i + g.dims[0] * (j + g.dims[1] * k))]);
-      }
-  return v;
-}
+  RankPiece(const SyntheticAngiogram& g, const PieceLayout& l)
+    : layout(l)
+  {
+    const VoxelBox& b = l.mine();
+    for (std::int64_t k = b.lo[2]; k <= b.hi[2]; ++k)
+      for (std::int64_t j = b.lo[1]; j <= b.hi[1]; ++j)
+        for (std::int64_t i = b.lo[0]; i <= b.hi[0]; ++i)
+        {
+          voxels.push_back(g.voxels[static_cast<std::size_t>(i + g.dims[0] * (j + g.dims[1] * k))]);
+        }
+    view.voxels = voxels.data();
+    view.dims = l.pieceDims();
+  }
+  RankPiece(const RankPiece&) = delete; // the view points into `voxels`
+  RankPiece& operator=(const RankPiece&) = delete;
 
-VolumeView<float> viewOf(const std::vector<float>& voxels, const PieceLayout& l)
-{
-  VolumeView<float> v;
-  v.voxels = voxels.data();
-  v.dims = l.pieceDims();
-  return v;
-}
+  /// The local linear index of whole-volume voxel `w` (held by the rank).
+  std::uint64_t linear(const std::array<std::int64_t, 3>& w) const
+  {
+    const auto q = layout.toLocal(w);
+    return view.linear(q[0], q[1], q[2]);
+  }
+  /// The growth's seeds on this rank: `seed`'s local index where the rank owns it, else none.
+  std::vector<std::uint64_t> seedsOwned(const std::array<std::int64_t, 3>& seed) const
+  {
+    return layout.ownerOf(seed) == layout.rank ? std::vector<std::uint64_t>{ linear(seed) }
+                                               : std::vector<std::uint64_t>{};
+  }
+
+  const PieceLayout& layout;
+  std::vector<float> voxels;
+  VolumeView<float> view;
+};
 
 /// A tube that runs from piece 0 up into piece 1, across, and back down into piece 0 far from
 /// where it left (a U), and a tube of its own that the growth must not reach.
@@ -120,60 +134,45 @@ TEST(DistributedRegionGrowth, NetworkLeavingThePieceAndComingBackMatchesOneProce
   const std::vector<char> single = floodFill(g, seed, threshold);
   for (int ranks : { 2, 3, 4 })
   {
-    const std::vector<PieceLayout> pieces = layouts(g.dims, ranks, 2);
-    InProcessWorld world(ranks);
-    std::vector<int> rounds(static_cast<std::size_t>(ranks), 0);
-    std::mutex failures;
-    std::vector<std::string> wrong;
-    world.run(
-      [&](int r, RankCollectives& c)
+    struct Grown
+    {
+      int rounds = 0;
+      int differ = 0; ///< voxels the rank decides otherwise than the single run
+    };
+    const std::vector<Grown> grown = onEveryRank<Grown>(layouts(g.dims, ranks, 2),
+      [&](const PieceLayout& l, RankCollectives& c, Grown& out)
       {
-        const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
-        const std::vector<float> voxels = pieceOf(g, l);
-        const VolumeView<float> v = viewOf(voxels, l);
+        const RankPiece piece(g, l);
+        const VolumeView<float>& v = piece.view;
         SparseVesselMask mask(v.dims);
-        std::vector<std::uint64_t> seeds;
-        if (l.ownerOf(seed) == r)
-        {
-          const auto q = l.toLocal(seed);
-          seeds.push_back(v.linear(q[0], q[1], q[2]));
-        }
         const DistributedRegionGrowth growth(l);
         const auto outcome = growth.run(
           c,
           mask,
-          seeds,
+          piece.seedsOwned(seed),
           [&v, threshold](std::uint64_t lin) { return v.voxels[lin] >= threshold; },
           DistributedRegionGrowth::OnJoin());
-        rounds[static_cast<std::size_t>(r)] = outcome.settled ? outcome.rounds : -1;
+        out.rounds = outcome.settled ? outcome.rounds : -1;
         // The rank's region equals the single run's on every voxel it decides.
-        const VoxelBox e = l.evaluable(r);
-        int differ = 0;
+        const VoxelBox e = l.evaluable(l.rank);
         for (std::int64_t k = e.lo[2]; k <= e.hi[2]; ++k)
           for (std::int64_t j = e.lo[1]; j <= e.hi[1]; ++j)
             for (std::int64_t i = e.lo[0]; i <= e.hi[0]; ++i)
             {
-              const auto q = l.toLocal({ i, j, k });
-              const bool local = mask.test(v.linear(q[0], q[1], q[2]));
-              differ +=
+              const bool local = mask.test(piece.linear({ i, j, k }));
+              out.differ +=
                 local !=
                 (single[static_cast<std::size_t>(i + g.dims[0] * (j + g.dims[1] * k))] != 0);
             }
-        if (differ)
-        {
-          std::lock_guard<std::mutex> lock(failures);
-          wrong.push_back(std::to_string(ranks) + " ranks, rank " + std::to_string(r) + ": " +
-                          std::to_string(differ) + " voxels differ");
-        }
       });
-    EXPECT_TRUE(wrong.empty()) << wrong.front();
-    for (int r = 0; r < ranks; ++r)
+    for (std::size_t r = 0; r < grown.size(); ++r)
     {
-      EXPECT_EQ(rounds[static_cast<std::size_t>(r)], rounds[0]) << "every rank, the same rounds";
+      EXPECT_EQ(grown[r].differ, 0) << ranks << " ranks, rank " << r << ": voxels differ";
+      EXPECT_EQ(grown[r].rounds, grown[0].rounds) << "every rank, the same rounds";
     }
     // Up the U's first leg into the upper piece, back down its second into the lower: at least
     // two exchanges carry voxels, one more finds nothing new.
-    EXPECT_GE(rounds[0], 3) << ranks << " ranks";
+    EXPECT_GE(grown[0].rounds, 3) << ranks << " ranks";
   }
   // The tube apart is not reached (the single run, hence every rank, leaves it out).
   EXPECT_EQ(single[static_cast<std::size_t>(20 + 40 * (4 + 24 * 12))], 0);
@@ -182,30 +181,20 @@ TEST(DistributedRegionGrowth, NetworkLeavingThePieceAndComingBackMatchesOneProce
 TEST(DistributedRegionGrowth, RoundCapStopsEveryRankWithAMessage)
 {
   const SyntheticAngiogram g = uVolume();
-  const std::vector<PieceLayout> pieces = layouts(g.dims, 2, 2);
-  InProcessWorld world(2);
-  std::vector<std::string> messages(2);
-  world.run(
-    [&](int r, RankCollectives& c)
+  const std::vector<std::string> messages = onEveryRank<std::string>(layouts(g.dims, 2, 2),
+    [&](const PieceLayout& l, RankCollectives& c, std::string& message)
     {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
-      const std::vector<float> voxels = pieceOf(g, l);
-      const VolumeView<float> v = viewOf(voxels, l);
+      const RankPiece piece(g, l); // the seed in rank 0's piece
+      const VolumeView<float>& v = piece.view;
       SparseVesselMask mask(v.dims);
-      std::vector<std::uint64_t> seeds;
-      if (r == 0)
-      {
-        const auto q = l.toLocal({ 6, 12, 8 });
-        seeds.push_back(v.linear(q[0], q[1], q[2]));
-      }
       const auto o = DistributedRegionGrowth(l).run(
         c,
         mask,
-        seeds,
+        piece.seedsOwned({ 6, 12, 8 }),
         [&v](std::uint64_t lin) { return v.voxels[lin] >= 550.0F; },
         DistributedRegionGrowth::OnJoin(),
         2);
-      messages[static_cast<std::size_t>(r)] = o.settled ? "" : o.message;
+      message = o.settled ? "" : o.message;
     });
   EXPECT_NE(messages[0].find("did not settle in 2 rounds"), std::string::npos) << messages[0];
   EXPECT_EQ(messages[0], messages[1]);
@@ -217,19 +206,14 @@ TEST(DistributedRegionGrowth, AcceptThrowingOnOneRankThrowsOnEveryRank)
   // reported the U's first leg): the lower rank must not wait for it in the next exchange
   // (CollectiveRounds' shared failure; InProcessWorld would fail after 60 s instead).
   const SyntheticAngiogram g = uVolume();
-  const std::vector<PieceLayout> pieces = layouts(g.dims, 2, 2);
-  std::vector<std::string> thrown(2);
-  InProcessWorld(2).run(
-    [&](int r, RankCollectives& c)
+  const std::vector<std::string> thrown = onEveryRank<std::string>(layouts(g.dims, 2, 2),
+    [&](const PieceLayout& l, RankCollectives& c, std::string& what)
     {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
-      const std::vector<float> voxels = pieceOf(g, l);
-      const VolumeView<float> v = viewOf(voxels, l);
+      const int r = l.rank;
+      const RankPiece piece(g, l); // the seed in rank 0's piece
+      const VolumeView<float>& v = piece.view;
       SparseVesselMask mask(v.dims);
-      const auto q = l.toLocal({ 6, 12, 8 });
-      const std::vector<std::uint64_t> seeds =
-        r == 0 ? std::vector<std::uint64_t>{ v.linear(q[0], q[1], q[2]) }
-               : std::vector<std::uint64_t>{};
+      const std::vector<std::uint64_t> seeds = piece.seedsOwned({ 6, 12, 8 });
       const DistributedRegionGrowth::Accept accept = [&v, r](std::uint64_t lin)
       {
         if (r == 1)
@@ -241,15 +225,15 @@ TEST(DistributedRegionGrowth, AcceptThrowingOnOneRankThrowsOnEveryRank)
       try
       {
         DistributedRegionGrowth(l).run(c, mask, seeds, accept, DistributedRegionGrowth::OnJoin());
-        thrown[static_cast<std::size_t>(r)] = "nothing";
+        what = "nothing";
       }
       catch (const std::out_of_range& e)
       {
-        thrown[static_cast<std::size_t>(r)] = std::string("own: ") + e.what();
+        what = std::string("own: ") + e.what();
       }
       catch (const std::runtime_error& e)
       {
-        thrown[static_cast<std::size_t>(r)] = e.what();
+        what = e.what();
       }
     });
   EXPECT_EQ(thrown[1], "own: the upper piece's voxels are gone");
@@ -289,19 +273,13 @@ std::vector<RankRegion> distributedRegion(const SyntheticAngiogram& g,
   int margin,
   const VesselCandidateRegion::Result* single)
 {
-  const std::vector<PieceLayout> pieces = layouts(g.dims, ranks, margin);
-  std::vector<RankRegion> out(static_cast<std::size_t>(ranks));
-  InProcessWorld world(ranks);
-  world.run(
-    [&](int r, RankCollectives& c)
+  return onEveryRank<RankRegion>(layouts(g.dims, ranks, margin),
+    [&](const PieceLayout& l, RankCollectives& c, RankRegion& mine)
     {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
-      const std::vector<float> voxels = pieceOf(g, l);
-      const VolumeView<float> v = viewOf(voxels, l);
+      const RankPiece piece(g, l);
       VesselCandidateRegion::Settings s;
       s.useSeed = true;
-      const auto result = DistributedCandidateRegion::extract(v, l, seed, s, c);
-      RankRegion& mine = out[static_cast<std::size_t>(r)];
+      const auto result = DistributedCandidateRegion::extract(piece.view, l, seed, s, c);
       mine.ok = result.region.ok;
       mine.message = result.region.message;
       mine.range = result.region.range;
@@ -311,20 +289,18 @@ std::vector<RankRegion> distributedRegion(const SyntheticAngiogram& g,
       {
         return;
       }
-      const VoxelBox& o = l.owned[static_cast<std::size_t>(r)];
+      const VoxelBox& o = l.owned[static_cast<std::size_t>(l.rank)];
       for (std::int64_t k = o.lo[2]; k <= o.hi[2]; ++k)
         for (std::int64_t j = o.lo[1]; j <= o.hi[1]; ++j)
           for (std::int64_t i = o.lo[0]; i <= o.hi[0]; ++i)
           {
-            const auto q = l.toLocal({ i, j, k });
-            const bool here = result.region.mask.test(v.linear(q[0], q[1], q[2]));
+            const bool here = result.region.mask.test(piece.linear({ i, j, k }));
             const bool there =
               single->mask.test(static_cast<std::uint64_t>(i + g.dims[0] * (j + g.dims[1] * k)));
             mine.differ += here != there;
             mine.ownedRegion += here;
           }
     });
-  return out;
 }
 
 TEST(DistributedCandidateRegion, SameRangeAndRegionAsOneProcessOnTwoToFourPieces)

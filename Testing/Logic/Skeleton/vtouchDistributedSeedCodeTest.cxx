@@ -4,13 +4,15 @@
 // voxel it holds; the rounds end; the cap stops every rank at the same round; bad input throws on
 // every rank. And SeedCodeStage::relax, the round's Dijkstra, against a brute-force Bellman-Ford.
 #include "vtouchDistributedSeedCode.h"
-#include "vtouchInProcessCollectives.h"
+
+#include "vtouchDistributedTestScenes.h"
+#include "vtouchEveryRank.h"
+#include "vtouchHeldFieldDifference.h"
 #include "vtouchPieceGrid.h"
-#include "vtouchSkeletonStageTestSupport.h"
+#include "vtouchSeedCodeRun.h"
 
 #include <gtest/gtest.h>
 
-#include <mutex>
 #include <random>
 #include <string>
 
@@ -18,105 +20,34 @@ namespace vtouch
 {
 namespace
 {
-using skeleton::Point_mm;
-using skeleton::test::Dims;
-using test::InProcessWorld;
+using test::capsuleMask;
+using test::compareWithSingleRun;
+using test::Dims;
+using test::HeldFieldDifference;
+using test::kSplitsIn2And4And8;
 using test::layouts;
+using test::onEveryRank;
 using test::pieceMask;
+using test::randomTree;
+using test::randomVesselVoxel;
+using test::SeedCodeRun;
+using test::singleRunField;
+using test::VoxelIndex;
 
-struct Capsule
+/// A U: up a tube in the lower piece, across in the upper piece, and down again into the lower
+/// piece far from where it left; the root at the foot of the first leg.
+SparseVesselMask uTube(const Dims& d)
 {
-  Point_mm a, b; // voxel indices
-  double radius; // voxels
-};
-
-/// A random tree of capsules (a trunk, 2-3 levels of branches) and a small blob apart, in the
-/// voxel index frame; `seed` makes it.
-std::vector<Capsule> randomTree(const Dims& d, unsigned seed)
-{
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const auto inside = [&](double margin)
-  {
-    return Point_mm{ margin + unit(random) * (static_cast<double>(d[0]) - 2 * margin),
-      margin + unit(random) * (static_cast<double>(d[1]) - 2 * margin),
-      margin + unit(random) * (static_cast<double>(d[2]) - 2 * margin) };
-  };
-  std::vector<Capsule> tree{ { inside(4), inside(4), 1.5 + unit(random) } };
-  for (int level = 0; level < 3; ++level)
-  {
-    const std::size_t parents = tree.size();
-    for (std::size_t p = 0; p < parents; ++p)
-    {
-      if (unit(random) < 0.35)
-      {
-        continue;
-      }
-      const Capsule c = tree[p];
-      const double t = 0.2 + 0.6 * unit(random);
-      const Point_mm from{ c.a[0] + t * (c.b[0] - c.a[0]),
-        c.a[1] + t * (c.b[1] - c.a[1]),
-        c.a[2] + t * (c.b[2] - c.a[2]) };
-      tree.push_back({ from, inside(3), std::max(1.0, c.radius * (0.6 + 0.3 * unit(random))) });
-    }
-  }
-  tree.push_back({ { 2, 2, 2 }, { 2, 2, 2 }, 1.2 }); // a blob apart (or touching: either way)
-  return tree;
-}
-
-SparseVesselMask maskOf(const Dims& d, const std::vector<Capsule>& tree)
-{
-  return skeleton::test::makeMask(d,
-    [&](const Point_mm& p)
-    {
-      for (const Capsule& c : tree)
-      {
-        const bool point = c.a == c.b;
-        if ((point ? skeleton::distance(p, c.a) : skeleton::test::distanceToSegment(p, c.a, c.b)) <=
-            c.radius)
-        {
-          return true;
-        }
-      }
-      return false;
-    });
-}
-
-/// The single run's SS code from `root` on the whole mask (indexed by rank), as VoxelCoder runs it.
-std::vector<float> singleRun(const SparseVesselMask& mask,
-  const std::array<double, 3>& spacing_mm,
-  const std::array<std::int64_t, 3>& root)
-{
-  skeleton::VoxelGrid grid(mask, spacing_mm, 0.0);
-  skeleton::VoxelCodes codes;
-  codes.ss.assign(mask.vesselCount(), skeleton::VoxelCodes::kInf);
-  codes.flags.assign(mask.vesselCount(), 0);
-  const std::function<bool(double)> none;
-  skeleton::RunMeter meter(none);
-  skeleton::SeedCodeStage stage(grid, meter, codes, 0.0);
-  stage.propagate({ static_cast<std::uint32_t>(grid.linOf(root[0], root[1], root[2])) });
-  return codes.ss;
-}
-
-/// A vessel voxel of `mask` picked by `random`.
-std::array<std::int64_t, 3> randomVesselVoxel(const SparseVesselMask& mask, std::mt19937& random)
-{
-  std::vector<std::uint64_t> all;
-  mask.forEach([&](std::uint64_t lin) { all.push_back(lin); });
-  const std::uint64_t lin =
-    all[std::uniform_int_distribution<std::size_t>(0, all.size() - 1)(random)];
-  const Dims& d = mask.dims();
-  return { static_cast<std::int64_t>(lin) % d[0],
-    (static_cast<std::int64_t>(lin) / d[0]) % d[1],
-    static_cast<std::int64_t>(lin) / (d[0] * d[1]) };
+  return capsuleMask(d,
+    { { { 6, 12, 4 }, { 6, 12, 40 }, 2.0 },
+      { { 6, 12, 40 }, { 33, 12, 40 }, 2.0 },
+      { { 33, 12, 40 }, { 33, 12, 4 }, 2.0 } });
 }
 
 struct RankResult
 {
   DistributedSeedCode::Outcome outcome;
-  int differing = 0;       ///< held vessel voxels whose SS differs from the single run's
-  int reached = 0;         ///< held vessel voxels with a finite SS
-  std::string firstDiffer; ///< the first of them, for the message
+  HeldFieldDifference held; ///< the held vessel voxels against the single run's field
 };
 
 /// Runs the distributed SS code on `pieces` and compares every rank's held voxels.
@@ -124,44 +55,44 @@ std::vector<RankResult> runDistributed(const SparseVesselMask& whole,
   const std::vector<float>& single,
   const std::array<double, 3>& spacing_mm,
   const std::vector<PieceLayout>& pieces,
-  const std::array<std::int64_t, 3>& root,
+  const VoxelIndex& root,
   int maximumRounds = DistributedSeedCode::kDefaultMaximumRounds)
 {
-  const int ranks = static_cast<int>(pieces.size());
-  std::vector<RankResult> results(static_cast<std::size_t>(ranks));
-  InProcessWorld world(ranks);
-  world.run(
-    [&](int r, RankCollectives& c)
+  return onEveryRank<RankResult>(pieces,
+    [&](const PieceLayout& l, RankCollectives& c, RankResult& out)
     {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
       const SparseVesselMask mask = pieceMask(whole, l);
       DistributedSeedCode code(l, mask, spacing_mm);
-      RankResult& out = results[static_cast<std::size_t>(r)];
       out.outcome = code.run(c, { root }, maximumRounds);
-      const Dims d = l.pieceDims();
       mask.forEach(
-        [&](std::uint64_t lin)
-        {
-          const auto li = static_cast<std::int64_t>(lin);
-          const std::array<std::int64_t, 3> w =
-            l.toWhole({ li % d[0], (li / d[0]) % d[1], li / (d[0] * d[1]) });
-          const float expected = single[whole.rank(static_cast<std::uint64_t>(l.wholeLinear(w)))];
-          const float got = code.ssAt(lin);
-          EXPECT_EQ(got, code.ss()[mask.rank(lin)]);
-          out.reached += got != skeleton::VoxelCodes::kInf;
-          if (got != expected)
-          {
-            if (out.differing++ == 0)
-            {
-              out.firstDiffer = "(" + std::to_string(w[0]) + "," + std::to_string(w[1]) + "," +
-                                std::to_string(w[2]) + "): " + std::to_string(got) + " vs " +
-                                std::to_string(expected);
-            }
-          }
-        });
+        [&](std::uint64_t lin) { EXPECT_EQ(code.ssAt(lin), code.ss()[mask.rank(lin)]); });
+      out.held = compareWithSingleRun(whole, single, l, mask, code.ss(), l.mine());
     });
-  return results;
 }
+
+/// The U of the round tests (uTube) in 40 x 24 x 48 voxels of 1 mm, the root at the first
+/// leg's foot, the single run's field, and the distributed run on 2 pieces along z (margin 2)
+/// stopped after `maximumRounds`.
+struct UTubeRun
+{
+  explicit UTubeRun(int maximumRounds = DistributedSeedCode::kDefaultMaximumRounds)
+    : whole(uTube(dims))
+    , single(singleRunField(whole, spacing_mm, { root }))
+    , results(runDistributed(whole,
+        single,
+        spacing_mm,
+        layouts(dims, { 1, 1, 2 }, 2),
+        root,
+        maximumRounds))
+  {
+  }
+  const Dims dims{ 40, 24, 48 };
+  const std::array<double, 3> spacing_mm{ 1, 1, 1 };
+  const VoxelIndex root{ 6, 12, 5 };
+  const SparseVesselMask whole;
+  const std::vector<float> single;
+  const std::vector<RankResult> results;
+};
 
 TEST(DistributedSeedCode, EveryRankHoldsTheSingleRunsCodeOnRandomTreesIn2And4And8Pieces)
 {
@@ -170,15 +101,13 @@ TEST(DistributedSeedCode, EveryRankHoldsTheSingleRunsCodeOnRandomTreesIn2And4And
   int multiRound = 0;
   for (unsigned trial = 0; trial < 4; ++trial)
   {
-    const SparseVesselMask whole = maskOf(dims, randomTree(dims, 1000 + trial));
+    const SparseVesselMask whole = randomTree(dims, 1000 + trial);
     // Isotropic, then anisotropic voxels (the queue's bucket is the smallest spacing).
     const std::array<double, 3> spacing_mm =
       trial % 2 ? std::array<double, 3>{ 0.9, 0.75, 1.2 } : std::array<double, 3>{ 1, 1, 1 };
-    const std::array<std::int64_t, 3> root = randomVesselVoxel(whole, random);
-    const std::vector<float> single = singleRun(whole, spacing_mm, root);
-    for (const std::array<int, 3>& counts : { std::array<int, 3>{ 1, 1, 2 },
-           std::array<int, 3>{ 1, 2, 2 },
-           std::array<int, 3>{ 2, 2, 2 } })
+    const VoxelIndex root = randomVesselVoxel(whole, random);
+    const std::vector<float> single = singleRunField(whole, spacing_mm, { root });
+    for (const std::array<int, 3>& counts : kSplitsIn2And4And8)
     {
       const int margin = 1 + static_cast<int>(trial % 2);
       const std::vector<RankResult> results =
@@ -191,8 +120,8 @@ TEST(DistributedSeedCode, EveryRankHoldsTheSingleRunsCodeOnRandomTreesIn2And4And
                      " pieces, rank " + std::to_string(r));
         EXPECT_TRUE(results[r].outcome.settled) << results[r].outcome.message;
         EXPECT_EQ(results[r].outcome.rounds, rounds); // every rank stops at the same round
-        EXPECT_EQ(results[r].differing, 0) << results[r].firstDiffer;
-        reached += results[r].reached;
+        EXPECT_EQ(results[r].held.differing, 0) << results[r].held.firstDiffer;
+        reached += results[r].held.reached;
       }
       EXPECT_GT(reached, 200); // the tree is reached, not only the root
       EXPECT_GE(rounds, 2);    // at least one exchange carried distances, one found none
@@ -202,29 +131,12 @@ TEST(DistributedSeedCode, EveryRankHoldsTheSingleRunsCodeOnRandomTreesIn2And4And
   EXPECT_GT(multiRound, 0); // some run needed distances relayed more than once
 }
 
-/// A U: up a tube in the lower piece, across in the upper piece, and down again into the lower
-/// piece far from where it left; the root at the foot of the first leg.
-SparseVesselMask uTube(const Dims& d)
-{
-  return maskOf(d,
-    { { { 6, 12, 4 }, { 6, 12, 40 }, 2.0 },
-      { { 6, 12, 40 }, { 33, 12, 40 }, 2.0 },
-      { { 33, 12, 40 }, { 33, 12, 4 }, 2.0 } });
-}
-
 TEST(DistributedSeedCode, APathLeavingThePieceAndComingBackTakesRoundsAndMatches)
 {
-  const Dims dims{ 40, 24, 48 };
-  const SparseVesselMask whole = uTube(dims);
-  const std::array<double, 3> spacing_mm{ 1, 1, 1 };
-  const std::array<std::int64_t, 3> root{ 6, 12, 5 };
-  const std::vector<float> single = singleRun(whole, spacing_mm, root);
-  const std::vector<RankResult> results =
-    runDistributed(whole, single, spacing_mm, layouts(dims, { 1, 1, 2 }, 2), root);
-  for (const RankResult& r : results)
+  for (const RankResult& r : UTubeRun().results)
   {
     EXPECT_TRUE(r.outcome.settled);
-    EXPECT_EQ(r.differing, 0) << r.firstDiffer;
+    EXPECT_EQ(r.held.differing, 0) << r.held.firstDiffer;
     // Root's piece -> upper piece -> back down -> nothing new: four exchanges.
     EXPECT_EQ(r.outcome.rounds, 4);
     EXPECT_GT(r.outcome.reportedVoxels, 0U);
@@ -233,13 +145,7 @@ TEST(DistributedSeedCode, APathLeavingThePieceAndComingBackTakesRoundsAndMatches
 
 TEST(DistributedSeedCode, TheRoundCapStopsEveryRankTogether)
 {
-  const Dims dims{ 40, 24, 48 };
-  const SparseVesselMask whole = uTube(dims);
-  const std::array<double, 3> spacing_mm{ 1, 1, 1 };
-  const std::array<std::int64_t, 3> root{ 6, 12, 5 };
-  const std::vector<float> single = singleRun(whole, spacing_mm, root);
-  const std::vector<RankResult> results =
-    runDistributed(whole, single, spacing_mm, layouts(dims, { 1, 1, 2 }, 2), root, 2);
+  const std::vector<RankResult> results = UTubeRun(2).results;
   for (const RankResult& r : results)
   {
     EXPECT_FALSE(r.outcome.settled);
@@ -247,21 +153,16 @@ TEST(DistributedSeedCode, TheRoundCapStopsEveryRankTogether)
     EXPECT_NE(r.outcome.message.find("did not settle in 2 rounds"), std::string::npos);
   }
   // Stopped early, the lower piece lacks the second leg: the cap did cut the work short.
-  EXPECT_GT(results[0].differing, 0);
+  EXPECT_GT(results[0].held.differing, 0);
 }
 
 TEST(DistributedSeedCode, ARootOutsideTheVesselsThrowsOnEveryRank)
 {
   const Dims dims{ 40, 24, 48 };
   const SparseVesselMask whole = uTube(dims);
-  const std::vector<PieceLayout> pieces = layouts(dims, { 1, 1, 2 }, 1);
-  std::mutex m;
-  std::vector<std::string> messages;
-  InProcessWorld world(2);
-  world.run(
-    [&](int r, RankCollectives& c)
+  const std::vector<std::string> messages = onEveryRank<std::string>(layouts(dims, { 1, 1, 2 }, 1),
+    [&](const PieceLayout& l, RankCollectives& c, std::string& message)
     {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
       const SparseVesselMask mask = pieceMask(whole, l);
       DistributedSeedCode code(l, mask, { 1, 1, 1 });
       try
@@ -270,12 +171,13 @@ TEST(DistributedSeedCode, ARootOutsideTheVesselsThrowsOnEveryRank)
       }
       catch (const std::invalid_argument& e)
       {
-        const std::lock_guard<std::mutex> lock(m);
-        messages.emplace_back(e.what());
+        message = e.what();
       }
     });
-  ASSERT_EQ(messages.size(), 2U);
-  EXPECT_NE(messages[0].find("(20, 2, 30) is not a vessel voxel"), std::string::npos);
+  for (const std::string& message : messages)
+  {
+    EXPECT_NE(message.find("(20, 2, 30) is not a vessel voxel"), std::string::npos) << message;
+  }
 }
 
 TEST(DistributedSeedCode, ALayoutWithoutGhostLayersIsRefused)
@@ -298,13 +200,10 @@ TEST(VoxelCoderGlobalField, TheWholeMasksFieldGivesTheSeededRunsSkeleton)
   std::mt19937 random(11);
   for (unsigned trial = 0; trial < 3; ++trial)
   {
-    const SparseVesselMask whole = maskOf(dims, randomTree(dims, 300 + trial));
-    const std::array<std::int64_t, 3> root = randomVesselVoxel(whole, random);
-    VoxelCodingParameters seeded;
-    seeded.hasSeed = true;
-    seeded.seedIndex = root;
-    const RawSkeleton expected = VoxelCoder(whole, seeded).run();
-    const std::vector<float> ss = singleRun(whole, seeded.spacing_mm, root);
+    const SparseVesselMask whole = randomTree(dims, 300 + trial);
+    const VoxelIndex root = randomVesselVoxel(whole, random);
+    const RawSkeleton expected = test::seededSkeleton(whole, { 1, 1, 1 }, root);
+    const std::vector<float> ss = singleRunField(whole, { 1, 1, 1 }, { root });
     VoxelCodingParameters global;
     global.globalSs_mm = &ss;
     const RawSkeleton got = VoxelCoder(whole, global).run();
@@ -352,7 +251,7 @@ TEST(VoxelCoderGlobalField, TheWholeMasksFieldGivesTheSeededRunsSkeleton)
     EXPECT_LE(hausdorff, 2.0);
   }
   // A field of the wrong size is refused.
-  const SparseVesselMask whole = maskOf(dims, randomTree(dims, 300));
+  const SparseVesselMask whole = randomTree(dims, 300);
   const std::vector<float> wrong(3, 0.0F);
   VoxelCodingParameters bad;
   bad.globalSs_mm = &wrong;
@@ -371,39 +270,23 @@ TEST(VoxelCoderGlobalField, PiecesCodedWithItHaveTheSingleRunsEndsAndJunctions)
   int ownRootsDiffer = 0, globalJunctionsDiffer = 0, boxes = 0;
   for (unsigned trial = 0; trial < 8; ++trial)
   {
-    const SparseVesselMask whole = maskOf(dims, randomTree(dims, 500 + trial));
-    const std::array<std::int64_t, 3> root = randomVesselVoxel(whole, random);
-    VoxelCodingParameters seeded;
-    seeded.hasSeed = true;
-    seeded.seedIndex = root;
-    const RawSkeleton single = VoxelCoder(whole, seeded).run();
-    for (const std::array<int, 3>& counts : { std::array<int, 3>{ 1, 1, 2 },
-           std::array<int, 3>{ 1, 2, 2 },
-           std::array<int, 3>{ 2, 2, 2 } })
+    const SparseVesselMask whole = randomTree(dims, 500 + trial);
+    const VoxelIndex root = randomVesselVoxel(whole, random);
+    const RawSkeleton single = test::seededSkeleton(whole, spacing_mm, root);
+    for (const std::array<int, 3>& counts : kSplitsIn2And4And8)
     {
-      const std::vector<PieceLayout> pieces = layouts(dims, counts, 8);
-      std::vector<std::array<std::pair<int, int>, 3>> topology(pieces.size());
-      InProcessWorld world(static_cast<int>(pieces.size()));
-      world.run(
-        [&](int r, RankCollectives& c)
-        {
-          const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
-          const SparseVesselMask mask = pieceMask(whole, l);
-          DistributedSeedCode code(l, mask, spacing_mm);
-          code.run(c, { root });
-          VoxelCodingParameters own;
-          VoxelCodingParameters global;
-          global.globalSs_mm = &code.ss();
-          const VoxelBox& owned = l.owned[static_cast<std::size_t>(r)];
-          topology[static_cast<std::size_t>(r)] = { test::endsAndJunctionsIn(
-                                                      single, { 0, 0, 0 }, owned, dims, kInset),
-            test::endsAndJunctionsIn(VoxelCoder(mask, own).run(), l.mine().lo, owned, dims, kInset),
-            test::endsAndJunctionsIn(
-              VoxelCoder(mask, global).run(), l.mine().lo, owned, dims, kInset) };
-        });
+      const auto topology =
+        onEveryRank<std::array<std::pair<int, int>, 3>>(layouts(dims, counts, 8),
+          [&](const PieceLayout& l, RankCollectives& c, std::array<std::pair<int, int>, 3>& out)
+          {
+            const SparseVesselMask mask = pieceMask(whole, l);
+            DistributedSeedCode code(l, mask, spacing_mm);
+            code.run(c, { root });
+            out = test::ownedBoxTopology(single, l, mask, code.ss(), spacing_mm, kInset);
+          });
       for (std::size_t r = 0; r < topology.size(); ++r)
       {
-        SCOPED_TRACE("trial " + std::to_string(trial) + ", " + std::to_string(pieces.size()) +
+        SCOPED_TRACE("trial " + std::to_string(trial) + ", " + std::to_string(topology.size()) +
                      " pieces, rank " + std::to_string(r));
         // The free ends (the spurs at the pieces' own roots were the defect) always.
         EXPECT_EQ(topology[r][2].first, topology[r][0].first);
@@ -459,15 +342,9 @@ std::vector<float> bellmanFord(const skeleton::VoxelGrid& grid,
 TEST(SeedCodeStageRelax, SourcesAtDifferentDistancesGiveTheBellmanFordField)
 {
   const Dims dims{ 44, 40, 48 };
-  const SparseVesselMask mask = maskOf(dims, randomTree(dims, 4242));
-  const std::array<double, 3> spacing_mm{ 0.9, 0.75, 1.2 };
-  skeleton::VoxelGrid grid(mask, spacing_mm, 0.0);
-  skeleton::VoxelCodes codes;
-  codes.ss.assign(mask.vesselCount(), skeleton::VoxelCodes::kInf);
-  codes.flags.assign(mask.vesselCount(), 0);
-  const std::function<bool(double)> none;
-  skeleton::RunMeter meter(none);
-  skeleton::SeedCodeStage stage(grid, meter, codes, 0.0);
+  const SparseVesselMask mask = randomTree(dims, 4242);
+  SeedCodeRun run(mask, { 0.9, 0.75, 1.2 });
+  const skeleton::VoxelGrid& grid = run.grid;
   std::mt19937 random(3);
   std::vector<std::uint64_t> all;
   mask.forEach([&](std::uint64_t lin) { all.push_back(lin); });
@@ -488,18 +365,18 @@ TEST(SeedCodeStageRelax, SourcesAtDifferentDistancesGiveTheBellmanFordField)
     return static_cast<std::size_t>(std::unique(v.begin(), v.end()) - v.begin());
   };
   std::vector<std::uint32_t> lowered;
-  const std::size_t firstSettled = stage.relax(first, lowered);
+  const std::size_t firstSettled = run.stage.relax(first, lowered);
   EXPECT_EQ(firstSettled, distinct(lowered));
-  EXPECT_EQ(codes.ss, bellmanFord(grid, first));
+  EXPECT_EQ(run.codes.ss, bellmanFord(grid, first));
   EXPECT_GT(firstSettled, 500U);
   lowered.clear();
-  const std::size_t secondSettled = stage.relax(second, lowered);
+  const std::size_t secondSettled = run.stage.relax(second, lowered);
   EXPECT_EQ(secondSettled, distinct(lowered));
   EXPECT_GT(secondSettled, 0U);
   std::vector<skeleton::SeedCodeStage::Source> both = first;
   both.insert(both.end(), second.begin(), second.end());
   const std::vector<float> expected = bellmanFord(grid, both);
-  EXPECT_EQ(codes.ss, expected);
+  EXPECT_EQ(run.codes.ss, expected);
   // `lowered` names exactly the voxels the second call changed.
   const std::vector<float> before = bellmanFord(grid, first);
   std::sort(lowered.begin(), lowered.end());
@@ -515,21 +392,14 @@ TEST(SeedCodeStageRelax, SourcesAtDifferentDistancesGiveTheBellmanFordField)
 TEST(SeedCodeStageRelax, OneSourceAtZeroEqualsPropagate)
 {
   const Dims dims{ 44, 40, 48 };
-  const SparseVesselMask mask = maskOf(dims, randomTree(dims, 99));
+  const SparseVesselMask mask = randomTree(dims, 99);
   const std::array<double, 3> spacing_mm{ 0.9, 0.75, 1.2 };
   std::mt19937 random(8);
-  const std::array<std::int64_t, 3> root = randomVesselVoxel(mask, random);
-  skeleton::VoxelGrid grid(mask, spacing_mm, 0.0);
-  skeleton::VoxelCodes codes;
-  codes.ss.assign(mask.vesselCount(), skeleton::VoxelCodes::kInf);
-  codes.flags.assign(mask.vesselCount(), 0);
-  const std::function<bool(double)> none;
-  skeleton::RunMeter meter(none);
-  skeleton::SeedCodeStage stage(grid, meter, codes, 0.0);
+  const VoxelIndex root = randomVesselVoxel(mask, random);
+  SeedCodeRun run(mask, spacing_mm);
   std::vector<std::uint32_t> lowered;
-  stage.relax(
-    { { static_cast<std::uint32_t>(grid.linOf(root[0], root[1], root[2])), 0.0F } }, lowered);
-  EXPECT_EQ(codes.ss, singleRun(mask, spacing_mm, root));
+  run.stage.relax({ { run.linOf(root), 0.0F } }, lowered);
+  EXPECT_EQ(run.codes.ss, singleRunField(mask, spacing_mm, { root }));
 }
 
 } // namespace

@@ -3,9 +3,10 @@
 // meet at its top, in rank 1's piece, where both legs enter from the shared face (each entry a
 // local minimum of the field: a root band of its own for the trace stage). Rank 1 must keep the
 // meeting as the single run does (the second leg, attached where the fronts met), so that the
-// stitch closes the ring; ranks as threads (InProcessWorld), the field from DistributedSeedCode.
+// stitch closes the ring; ranks as threads (InProcessWorld, onEveryRank), the field from
+// DistributedSeedCode.
 #include "vtouchDistributedSeedCode.h"
-#include "vtouchInProcessCollectives.h"
+#include "vtouchEveryRank.h"
 #include "vtouchPieceGrid.h"
 #include "vtouchSkeletonStageTestSupport.h"
 
@@ -102,18 +103,15 @@ TEST(VoxelCoderGlobalField, ARingsFrontsMeetingInAPieceKeepTheirMeeting)
   constexpr int kInset = 3;
   const std::vector<PieceLayout> pieces = test::layouts(dims, { 1, 1, 2 }, 8);
   ASSERT_EQ(pieces.size(), 2U);
-  std::vector<RawSkeleton> coded(pieces.size());
-  test::InProcessWorld world(static_cast<int>(pieces.size()));
-  world.run(
-    [&](int r, RankCollectives& c)
+  const std::vector<RawSkeleton> coded = test::onEveryRank<RawSkeleton>(pieces,
+    [&](const PieceLayout& l, RankCollectives& c, RawSkeleton& out)
     {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
       const SparseVesselMask mask = test::pieceMask(whole, l);
       DistributedSeedCode code(l, mask, seeded.spacing_mm);
       code.run(c, { root });
       VoxelCodingParameters global;
       global.globalSs_mm = &code.ss();
-      coded[static_cast<std::size_t>(r)] = VoxelCoder(mask, global).run();
+      out = VoxelCoder(mask, global).run();
     });
   for (std::size_t r = 0; r < pieces.size(); ++r)
   {

@@ -116,4 +116,32 @@ inline std::pair<int, int> endsAndJunctionsIn(const RawSkeleton& skeleton,
   return { ends, junctions };
 }
 
+/// Free ends and junctions inside rank `l`'s owned box, `inset` voxels from its shared faces
+/// (endsAndJunctionsIn), of: the single run's skeleton `single` (whole index), the piece `mask`
+/// coded from roots of its own (the distributed coding without the global field), and the piece
+/// coded with the global SS field `globalSs_mm` (VoxelCodingParameters::globalSs_mm); voxels of
+/// `spacing_mm`. The measure of vtouchDistributedSeedCodeTest and vesseltouch-distributed-seedcode.
+inline std::array<std::pair<int, int>, 3> ownedBoxTopology(const RawSkeleton& single,
+  const PieceLayout& l,
+  const SparseVesselMask& mask,
+  const std::vector<float>& globalSs_mm,
+  const std::array<double, 3>& spacing_mm,
+  int inset)
+{
+  VoxelCodingParameters own;
+  own.spacing_mm = spacing_mm;
+  VoxelCodingParameters global = own;
+  global.globalSs_mm = &globalSs_mm;
+  const VoxelBox& owned = l.owned[static_cast<std::size_t>(l.rank)];
+  return { endsAndJunctionsIn(single, { 0, 0, 0 }, owned, l.wholeDims, inset),
+    endsAndJunctionsIn(VoxelCoder(mask, own).run(), l.mine().lo, owned, l.wholeDims, inset),
+    endsAndJunctionsIn(VoxelCoder(mask, global).run(), l.mine().lo, owned, l.wholeDims, inset) };
+}
+
+/// The splits of the distributed tests and benchmarks: 2 pieces along z, 2 x 2 in y and z, and
+/// 2 x 2 x 2 (`counts` of layouts).
+inline const std::array<std::array<int, 3>, 3> kSplitsIn2And4And8{
+  { { 1, 1, 2 }, { 1, 2, 2 }, { 2, 2, 2 } }
+};
+
 } // namespace vtouch::test

@@ -6,8 +6,10 @@
 #include "vtouchSeedVoxel.h"
 #include "vtouchSinglePointPaths.h"
 
-#include "vtouchInProcessCollectives.h"
+#include "vtouchEveryRank.h"
+#include "vtouchHeldFieldDifference.h"
 #include "vtouchPieceGrid.h"
+#include "vtouchSeedCodeRun.h"
 #include "vtouchSkeletonStageTestSupport.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
@@ -21,9 +23,8 @@ namespace vtouch
 {
 namespace
 {
-using skeleton::test::Dims;
-using test::InProcessWorld;
 using test::layouts;
+using test::onEveryRank;
 using test::pieceMask;
 
 const std::array<double, 3> kSpacing_mm{ 1.0, 1.0, 1.0 };
@@ -31,40 +32,16 @@ const std::array<double, 3> kSpacing_mm{ 1.0, 1.0, 1.0 };
 /// The single run's SS field from `root` on the whole mask (VoxelCoder's propagation).
 std::vector<float> singleRun(const SparseVesselMask& mask, const std::array<std::int64_t, 3>& root)
 {
-  skeleton::VoxelGrid grid(mask, kSpacing_mm, 0.0);
-  skeleton::VoxelCodes codes;
-  codes.ss.assign(mask.vesselCount(), skeleton::VoxelCodes::kInf);
-  codes.flags.assign(mask.vesselCount(), 0);
-  const std::function<bool(double)> none;
-  skeleton::RunMeter meter(none);
-  skeleton::SeedCodeStage stage(grid, meter, codes, 0.0);
-  stage.propagate({ static_cast<std::uint32_t>(grid.linOf(root[0], root[1], root[2])) });
-  return codes.ss;
+  return test::singleRunField(mask, kSpacing_mm, { root });
 }
 
-/// Voxels of rank `l`'s piece mask whose field differs from the whole field, in `box` only.
-int differing(const SparseVesselMask& whole,
-  const std::vector<float>& single,
-  const PieceLayout& l,
-  const SparseVesselMask& piece,
-  const std::vector<float>& field,
-  const VoxelBox& box)
+/// What a rank's coding gave: its rounds and the voxels whose field differs from the single
+/// run's (-1: the rank did not code).
+struct RankField
 {
-  int count = 0;
-  const Dims d = l.pieceDims();
-  piece.forEach(
-    [&](std::uint64_t lin)
-    {
-      const auto li = static_cast<std::int64_t>(lin);
-      const auto w = l.toWhole({ li % d[0], (li / d[0]) % d[1], li / (d[0] * d[1]) });
-      if (box.contains(w))
-      {
-        const auto wl = static_cast<std::uint64_t>(l.wholeLinear(w));
-        count += field[piece.rank(lin)] != single[whole.rank(wl)];
-      }
-    });
-  return count;
-}
+  int rounds = 0;
+  int wrong = -1;
+};
 
 /// The Y of the stage tests in a volume twice as deep (z 0..39, the Y at z = 10).
 SparseVesselMask deepY()
@@ -85,27 +62,23 @@ TEST(SeededDistributedCoding, EveryRankGetsTheSingleRunsFieldFromASeedOffTheVess
   for (const std::array<int, 3>& counts :
     { std::array<int, 3>{ 2, 1, 1 }, std::array<int, 3>{ 2, 2, 1 }, std::array<int, 3>{ 1, 4, 1 } })
   {
-    const std::vector<PieceLayout> pieces = layouts(whole.dims(), counts, 2);
-    InProcessWorld world(static_cast<int>(pieces.size()));
-    std::vector<int> rounds(pieces.size()), wrong(pieces.size());
-    world.run(
-      [&](int r, RankCollectives& c)
+    const std::vector<RankField> ranks = onEveryRank<RankField>(layouts(whole.dims(), counts, 2),
+      [&](const PieceLayout& l, RankCollectives& c, RankField& out)
       {
-        const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
         SparseVesselMask mask = pieceMask(whole, l);
         SeededDistributedCoding coding(c, l, kSpacing_mm, true, seed, {});
         const std::vector<float> field = coding.code(mask);
-        rounds[static_cast<std::size_t>(r)] = coding.report().rounds;
-        wrong[static_cast<std::size_t>(r)] = differing(whole, single, l, mask, field, l.mine());
+        out.rounds = coding.report().rounds;
+        out.wrong = test::compareWithSingleRun(whole, single, l, mask, field, l.mine()).differing;
         EXPECT_EQ(coding.report().root_Whole, root);
         EXPECT_TRUE(coding.joined());
       });
-    for (std::size_t r = 0; r < pieces.size(); ++r)
+    for (std::size_t r = 0; r < ranks.size(); ++r)
     {
-      EXPECT_EQ(wrong[r], 0) << "rank " << r << " of " << pieces.size();
-      EXPECT_EQ(rounds[r], rounds[0]);
+      EXPECT_EQ(ranks[r].wrong, 0) << "rank " << r << " of " << ranks.size();
+      EXPECT_EQ(ranks[r].rounds, ranks[0].rounds);
     }
-    EXPECT_GE(rounds[0], 2) << "the field crosses a face: at least one relay";
+    EXPECT_GE(ranks[0].rounds, 2) << "the field crosses a face: at least one relay";
   }
 }
 
@@ -116,13 +89,9 @@ TEST(SeededDistributedCoding, ARankWhoseRunStoppedBeforeItsCoderJoinsAndNobodyWa
   const SparseVesselMask whole = deepY();
   const std::array<std::int64_t, 3> seed{ 20, 10, 10 };
   const std::vector<float> single = singleRun(whole, seed);
-  const std::vector<PieceLayout> pieces = layouts(whole.dims(), { 2, 1, 2 }, 3);
-  InProcessWorld world(static_cast<int>(pieces.size()));
-  std::vector<int> wrong(pieces.size(), -1);
-  world.run(
-    [&](int r, RankCollectives& c)
+  const std::vector<RankField> ranks = onEveryRank<RankField>(layouts(whole.dims(), { 2, 1, 2 }, 3),
+    [&](const PieceLayout& l, RankCollectives& c, RankField& out)
     {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
       SparseVesselMask mask = pieceMask(whole, l);
       SeededDistributedCoding coding(c, l, kSpacing_mm, true, seed, {});
       if (mask.vesselCount() == 0)
@@ -132,22 +101,13 @@ TEST(SeededDistributedCoding, ARankWhoseRunStoppedBeforeItsCoderJoinsAndNobodyWa
         return;
       }
       const std::vector<float> field = coding.code(mask);
-      wrong[static_cast<std::size_t>(r)] = differing(whole, single, l, mask, field, l.mine());
+      out.wrong = test::compareWithSingleRun(whole, single, l, mask, field, l.mine()).differing;
     });
-  EXPECT_EQ(wrong[0], 0);
-  EXPECT_EQ(wrong[1], 0);
-  EXPECT_EQ(wrong[2], -1) << "the upper pieces hold no vessel";
-  EXPECT_EQ(wrong[3], -1);
-}
-
-/// Runs every rank of `pieces` with `body` and returns each rank's error message ("" none).
-std::vector<std::string> verdicts(const std::vector<PieceLayout>& pieces,
-  const std::function<void(int, RankCollectives&, std::vector<std::string>&)>& body)
-{
-  std::vector<std::string> messages(pieces.size());
-  InProcessWorld world(static_cast<int>(pieces.size()));
-  world.run([&](int r, RankCollectives& c) { body(r, c, messages); });
-  return messages;
+  ASSERT_EQ(ranks.size(), 4U);
+  EXPECT_EQ(ranks[0].wrong, 0);
+  EXPECT_EQ(ranks[1].wrong, 0);
+  EXPECT_EQ(ranks[2].wrong, -1) << "the upper pieces hold no vessel";
+  EXPECT_EQ(ranks[3].wrong, -1);
 }
 
 TEST(SeededDistributedCoding, EveryFailureIsOneVerdictOnEveryRank)
@@ -156,10 +116,12 @@ TEST(SeededDistributedCoding, EveryFailureIsOneVerdictOnEveryRank)
   const std::vector<PieceLayout> pieces = layouts(whole.dims(), { 2, 2, 1 }, 2);
   const auto run = [&](const std::array<std::int64_t, 3>& seed, int noPieceRank)
   {
-    return verdicts(pieces,
-      [&](int r, RankCollectives& c, std::vector<std::string>& messages)
+    // Each rank's error message ("" none).
+    return onEveryRank<std::string>(pieces,
+      [&](const PieceLayout& layout, RankCollectives& c, std::string& message)
       {
-        PieceLayout l = pieces[static_cast<std::size_t>(r)];
+        const int r = layout.rank;
+        PieceLayout l = layout;
         if (noPieceRank >= 0)
         {
           l.held[static_cast<std::size_t>(noPieceRank)] = VoxelBox{}; // that rank read nothing
@@ -179,7 +141,7 @@ TEST(SeededDistributedCoding, EveryFailureIsOneVerdictOnEveryRank)
         }
         catch (const SeededDistributedCodingError& e)
         {
-          messages[static_cast<std::size_t>(r)] = e.what();
+          message = e.what();
         }
       });
   };
@@ -215,39 +177,40 @@ TEST(SeededDistributedCoding, TheRawModesOuterLayerIsClearedAndTheSeedsRankAlone
   const std::vector<PieceLayout> pieces = layouts(whole.dims(), { 1, 2, 1 }, 3);
   ASSERT_EQ(pieces[0].ownerOf(seed), 0);
   ASSERT_TRUE(pieces[1].mine().contains(seed));
-  std::vector<std::uint64_t> cleared(2);
-  std::vector<int> wrong(2);
-  InProcessWorld world(2);
-  world.run(
-    [&](int r, RankCollectives& c)
+  struct Cleared
+  {
+    std::uint64_t voxels = 0;
+    int wrong = -1;
+  };
+  const std::vector<Cleared> ranks = onEveryRank<Cleared>(pieces,
+    [&](const PieceLayout& l, RankCollectives& c, Cleared& out)
     {
-      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
+      const int r = l.rank;
       SparseVesselMask mask = pieceMask(whole, l);
       SeededDistributedCoding::Settings s;
       s.clearOuterLayer = true;
       SeededDistributedCoding coding(c, l, kSpacing_mm, r == 1, seed, s);
       const std::vector<float> field = coding.code(mask);
       EXPECT_EQ(field.size(), mask.vesselCount()) << "indexed by the mask as left";
-      cleared[static_cast<std::size_t>(r)] = coding.report().clearedVoxels;
-      wrong[static_cast<std::size_t>(r)] = differing(whole, single, l, mask, field, l.evaluable(r));
+      out.voxels = coding.report().clearedVoxels;
+      out.wrong =
+        test::compareWithSingleRun(whole, single, l, mask, field, l.evaluable(r)).differing;
       EXPECT_EQ(coding.report().root_Whole, seed);
     });
-  EXPECT_GT(cleared[0], 0U) << "the trunk crosses rank 0's outer layer";
-  EXPECT_GT(cleared[1], 0U);
-  EXPECT_EQ(wrong[0], 0);
-  EXPECT_EQ(wrong[1], 0);
+  EXPECT_GT(ranks[0].voxels, 0U) << "the trunk crosses rank 0's outer layer";
+  EXPECT_GT(ranks[1].voxels, 0U);
+  EXPECT_EQ(ranks[0].wrong, 0);
+  EXPECT_EQ(ranks[1].wrong, 0);
 }
 
 TEST(SeededDistributedCoding, JoiningTwiceIsRefused)
 {
   const SparseVesselMask whole = skeleton::test::yShape();
-  const std::vector<PieceLayout> pieces = layouts(whole.dims(), { 1, 1, 1 }, 0);
-  InProcessWorld world(1);
-  world.run(
-    [&](int, RankCollectives& c)
+  onEveryRank<int>(layouts(whole.dims(), { 1, 1, 1 }, 0),
+    [&](const PieceLayout& l, RankCollectives& c, int&)
     {
       SparseVesselMask mask = whole;
-      SeededDistributedCoding coding(c, pieces[0], kSpacing_mm, true, { 20, 10, 10 }, {});
+      SeededDistributedCoding coding(c, l, kSpacing_mm, true, { 20, 10, 10 }, {});
       coding.code(mask);
       EXPECT_THROW(coding.join(), std::logic_error);
     });
