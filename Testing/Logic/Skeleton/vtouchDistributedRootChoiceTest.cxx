@@ -285,6 +285,7 @@ TEST(DistributedRootChoice, EveryRankGetsTheSingleRunsRootOnLargeTreesExploredOn
     }
   }
   EXPECT_GT(seen.fromBlocks, 0); // the exploration on blocks ran and its root was kept
+  EXPECT_GT(seen.moved, 0);      // and roots found on blocks moved to the thickest end
 }
 
 TEST(DistributedRootChoice, EveryComponentIsRootedAsTheSingleRunRootsItAmongSpecks)

@@ -313,5 +313,32 @@ TEST(DistributedRootChoice, TheRootMovesToAThickTrunkAcrossAPieceFaceAsInTheSing
   }
 }
 
+TEST(DistributedRootChoice, APieceWithoutBackgroundGivesEveryRankTheSameMessage)
+{
+  // A block of vessel filling the volume's lower half: the lower piece's held box has no
+  // background voxel, so no bound of its BS code (DistributedBoundaryCode); every rank stops.
+  const Dims dims{ 12, 10, 24 };
+  const SparseVesselMask half =
+    skeleton::test::makeMask(dims, [](const Point_mm& p) { return p[2] <= 13.0; });
+  const std::vector<PieceLayout> pieces = layouts(dims, { 1, 1, 2 }, 1);
+  std::vector<DistributedRootChoice::Result> results(pieces.size());
+  InProcessWorld world(static_cast<int>(pieces.size()));
+  world.run(
+    [&](int r, RankCollectives& c)
+    {
+      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
+      results[static_cast<std::size_t>(r)] =
+        DistributedRootChoice::choose(l, pieceMask(half, l), { 1, 1, 1 }, c, {});
+    });
+  for (const DistributedRootChoice::Result& r : results)
+  {
+    EXPECT_FALSE(r.ok);
+    EXPECT_NE(r.message.find("rank 0's held box has no background voxel"), std::string::npos)
+      << r.message;
+    EXPECT_EQ(r.message, results.front().message);
+    EXPECT_TRUE(r.components.empty());
+  }
+}
+
 } // namespace
 } // namespace vtouch
