@@ -68,6 +68,7 @@ DistributedBoundaryCode::Result DistributedBoundaryCode::compute(const PieceLayo
   const std::vector<std::vector<double>> bounds =
     collectives.allGather(std::vector<double>{ bound });
   ++out.exchanges;
+  out.gatheredValues += bounds.size();
   std::vector<VoxelBox> extended(bounds.size());
   for (std::size_t r = 0; r < bounds.size(); ++r)
   {
@@ -136,6 +137,7 @@ DistributedBoundaryCode::Result DistributedBoundaryCode::compute(const PieceLayo
     });
   for (const std::vector<std::int64_t>& v : all)
   {
+    out.gatheredValues += v.size();
     for (std::size_t p = 0; p + 1 < v.size();)
     {
       const auto count = static_cast<std::size_t>(v[p + 1]);

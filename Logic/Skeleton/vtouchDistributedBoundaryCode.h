@@ -45,6 +45,7 @@ public:
     std::vector<float> bs_mm;
     double largestBound_mm = 0.0;     ///< the largest B_r over the ranks
     std::uint64_t sentVoxels = 0;     ///< voxels sent in step 2, all ranks
+    std::uint64_t gatheredValues = 0; ///< 64-bit values both AllGathers carried, all ranks
     std::uint64_t extendedVoxels = 0; ///< this rank's extended box, voxels
     int exchanges = 0;                ///< AllGathers
   };

@@ -48,7 +48,7 @@ std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t r)
 /// What a rank adds up of one local set, over its owned voxels (packed as kValues int64).
 struct Record
 {
-  static constexpr std::size_t kValues = 12;
+  static constexpr std::size_t kValues = 11;
   std::int64_t name = 0; // the set's smallest held voxel, whole linear index
   std::int64_t band = 0;
   std::int64_t count = 0;
@@ -118,8 +118,7 @@ struct Record
         sum[1],
         sum[2],
         first,
-        bitsOf(firstSs),
-        0 });
+        bitsOf(firstSs) });
   }
   static Record unpack(const std::int64_t* v)
   {

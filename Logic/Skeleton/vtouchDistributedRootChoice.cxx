@@ -354,7 +354,7 @@ void Chooser::moveToThickest(DistributedRootChoice::ComponentRoot& component)
     boundary = std::make_unique<DistributedBoundaryCode::Result>(
       DistributedBoundaryCode::compute(layout, mask, spacing_mm, collectives));
     moveExchanges += boundary->exchanges;
-    moveValues += boundary->sentVoxels + static_cast<std::uint64_t>(layout.ranks());
+    moveValues += boundary->gatheredValues;
     if (!boundary->ok)
     {
       throw Stop{ boundary->message };

@@ -162,11 +162,14 @@ TEST(DistributedClusterGraph, IsTheSingleRunsGraphInTheKeyOrder)
     const std::vector<std::uint32_t> position =
       skeleton::clusterKeyOrder(expected, single.codes.ss, whole);
     ASSERT_GT(expected.size(), 20U);
-    for (const std::array<int, 3>& counts : kSplits)
+    for (std::size_t split = 0; split < kSplits.size(); ++split)
     {
+      const std::array<int, 3>& counts = kSplits[split];
+      const int margin = 1 + static_cast<int>(split); // 1, 2, 3
       SCOPED_TRACE("split " + std::to_string(counts[0]) + std::to_string(counts[1]) +
-                   std::to_string(counts[2]) + ", spacing x " + std::to_string(spacing_mm[0]));
-      const std::vector<PieceLayout> pieces = layouts(dims, counts, 2);
+                   std::to_string(counts[2]) + ", margin " + std::to_string(margin) +
+                   ", spacing x " + std::to_string(spacing_mm[0]));
+      const std::vector<PieceLayout> pieces = layouts(dims, counts, margin);
       std::vector<DistributedClusterGraph::Graph> graphs(pieces.size());
       InProcessWorld world(static_cast<int>(pieces.size()));
       world.run(
