@@ -2,9 +2,12 @@
 #include "vtouchDistributedRootChoice.h"
 
 #include "vtouchDistributedBlockPiece.h"
+#include "vtouchDistributedBoundaryCode.h"
+#include "vtouchDistributedClusterGraph.h"
 #include "vtouchDistributedEndCap.h"
 #include "vtouchSkeletonEndCapRule.h"
 #include "vtouchSkeletonSeedCodeStage.h"
+#include "vtouchSkeletonThickerEnd.h"
 #include "vtouchSkeletonVoxelCodes.h"
 #include "vtouchSkeletonVoxelGrid.h"
 
@@ -111,6 +114,14 @@ private:
   /// fine code's last propagation (from the start).
   std::vector<Index> exactRoots();
   void keepField(DistributedRootChoice::Result& result) const;
+  /// The single run's move to the thickest end (ClusterStage::thickerRoot) of the component
+  /// the fine code holds; propagates again when it moves.
+  void moveToThickest(DistributedRootChoice::ComponentRoot& component);
+  /// Records a coded component: its move, then its field.
+  void addComponent(DistributedRootChoice::Result& result,
+    const std::vector<Index>& roots,
+    std::uint64_t size,
+    bool fromBlocks);
 
   const PieceLayout& layout;
   const SparseVesselMask& mask;
@@ -121,6 +132,10 @@ private:
   std::unique_ptr<DistributedBlockPiece> blocks; // only on volumes explored on blocks
   std::unique_ptr<DistributedSeedCode> blockCode;
   double bandWidth_mm = 0.0, blockBandWidth_mm = 0.0;
+  float inverseBandWidth = 0.0F;
+  std::unique_ptr<DistributedBoundaryCode::Result> boundary; // once, at the first component
+  int moveExchanges = 0;
+  std::uint64_t moveValues = 0;
   std::vector<std::uint32_t> ownedVessel; // local indices, scan order
   std::size_t cursor = 0;
   std::vector<std::uint8_t> explored;      // per piece vessel voxel (rank)
@@ -141,7 +156,9 @@ void Chooser::prepare()
     throw std::invalid_argument("the round cap must be at least 1");
   }
   fine = std::make_unique<DistributedSeedCode>(layout, mask, spacing_mm);
-  bandWidth_mm = skeleton::VoxelGrid(mask, spacing_mm, par.clusterWidth_mm).bandWidth;
+  const skeleton::VoxelGrid grid(mask, spacing_mm, par.clusterWidth_mm);
+  bandWidth_mm = grid.bandWidth;
+  inverseBandWidth = grid.inverseBandWidth;
   explored.assign(mask.vesselCount(), 0);
   mask.forEach(
     [&](std::uint64_t lin)
@@ -330,6 +347,63 @@ void Chooser::keepField(DistributedRootChoice::Result& result) const
   }
 }
 
+void Chooser::moveToThickest(DistributedRootChoice::ComponentRoot& component)
+{
+  if (!boundary)
+  {
+    boundary = std::make_unique<DistributedBoundaryCode::Result>(
+      DistributedBoundaryCode::compute(layout, mask, spacing_mm, collectives));
+    moveExchanges += boundary->exchanges;
+    moveValues += boundary->gatheredValues;
+    if (!boundary->ok)
+    {
+      throw Stop{ boundary->message };
+    }
+  }
+  const DistributedClusterGraph::Graph graph = DistributedClusterGraph::build(
+    layout, mask, spacing_mm, inverseBandWidth, fine->ss(), boundary->bs_mm, collectives);
+  moveExchanges += graph.exchanges;
+  moveValues += graph.gatheredValues;
+  std::vector<std::uint32_t> keyOrder(graph.clusters.size());
+  for (std::uint32_t c = 0; c < keyOrder.size(); ++c)
+  {
+    keyOrder[c] = c; // the graph comes in the key order
+  }
+  const std::optional<std::uint32_t> end = skeleton::thickerEnd(graph.clusters, keyOrder);
+  if (!end)
+  {
+    return;
+  }
+  // ClusterStage::thickerRoot's voxel: at the end cluster's integer centroid when vessel, else
+  // its voxel of largest BS.
+  const skeleton::Cluster& c = graph.clusters[*end];
+  const Index centre = skeleton::nearestIndex(
+    skeleton::indexCentroid({ c.indexSum[0], c.indexSum[1], c.indexSum[2] }, c.count),
+    layout.wholeDims);
+  const bool iOwnCentre = owns(centre);
+  const bool centreVessel =
+    ownersAnswer(collectives, iOwnCentre, iOwnCentre && mask.test(localOf(centre)));
+  const Index root = centreVessel ? centre : layout.wholeIndex(graph.bestVoxel_Whole[*end]);
+  propagate(*fine, { root });
+  component.moved = true;
+  component.roots_Whole = { root };
+}
+
+void Chooser::addComponent(DistributedRootChoice::Result& result,
+  const std::vector<Index>& roots,
+  std::uint64_t size,
+  bool fromBlocks)
+{
+  DistributedRootChoice::ComponentRoot component;
+  component.roots_Whole = roots;
+  component.extremity_Whole = roots;
+  component.voxels = size;
+  component.fromBlocks = fromBlocks;
+  moveToThickest(component);
+  result.components.push_back(std::move(component));
+  keepField(result);
+}
+
 void Chooser::chooseAll(DistributedRootChoice::Result& result)
 {
   result.ss_mm.assign(mask.vesselCount(), kInf);
@@ -378,8 +452,7 @@ void Chooser::chooseAll(DistributedRootChoice::Result& result)
             const std::uint64_t size = markExplored();
             if (size >= par.minimumComponentSize)
             {
-              result.components.push_back({ { *root }, size, true });
-              keepField(result);
+              addComponent(result, { *root }, size, true);
             }
             continue;
           } // else the blocks joined two components: the exact search
@@ -394,11 +467,13 @@ void Chooser::chooseAll(DistributedRootChoice::Result& result)
     }
     const std::vector<Index> roots = exactRoots();
     propagate(*fine, roots);
-    result.components.push_back({ roots, size, false });
-    keepField(result);
+    addComponent(result, roots, size, false);
   }
   result.propagations = propagations;
   result.rounds = rounds;
+  result.moveExchanges = moveExchanges;
+  result.moveValues = moveValues;
+  result.boundBs_mm = boundary ? boundary->largestBound_mm : 0.0;
 }
 
 } // namespace

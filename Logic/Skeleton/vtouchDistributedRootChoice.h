@@ -21,10 +21,14 @@
 // - the nearest vessel voxel to the block cap's centre: the ranks' candidates, the smallest
 //   distance, ties to the smallest index (the single run's scan order).
 //
-// Not reproduced: the single run then moves the root to the thickest end of the tree
-// (ClusterStage::thickerRoot, when another end is 1.2 times thicker): that reads the cluster
-// graph across pieces, which no distributed stage builds yet. The root given here is the
-// extremity the single run first codes from (RawSkeleton::roots[].extremity).
+// Then, as the single run does, the move to the thickest end (ClusterStage::thickerRoot through
+// skeleton::thickerEnd, the one rule both call): the BS code exact on the owned voxels
+// (vtouch::DistributedBoundaryCode, once per choice), the component's cluster graph gathered to
+// every rank (vtouch::DistributedClusterGraph, in the key order the rule reads), the end's root
+// voxel (the vessel voxel at its clusters' integer centroid, else its voxel of largest BS) and,
+// when the root moves, the SS code again from it. The roots given are the single run's final
+// ones (RawSkeleton::roots[].thickest when moved, else .extremity) and the field the one it
+// codes with.
 //
 // Collective rules: every rank takes every step; a failure (a layout or mask that cannot work, a
 // round cap) is a verdict every rank reaches together; no whole-volume array on any rank (the
@@ -59,9 +63,14 @@ public:
 
   struct ComponentRoot
   {
-    /// The root voxel(s), whole index: one voxel, or the end cap's voxels when its centre is
-    /// background (the single run's propagate(region)).
+    /// The root voxel(s) the SS field is coded from, whole index: the thickest end's root
+    /// voxel when `moved`, else `extremity_Whole` (RawSkeleton::roots' final root).
     std::vector<std::array<std::int64_t, 3>> roots_Whole;
+    /// The extremity the single run first codes from: one voxel, or the end cap's voxels when
+    /// its centre is background (the single run's propagate(region); RawSkeleton::roots[].
+    /// extremity).
+    std::vector<std::array<std::int64_t, 3>> extremity_Whole;
+    bool moved = false;       ///< re-rooted at the thickest end (RawComponentRoot::moved)
     std::uint64_t voxels = 0; ///< the component's vessel voxels (all ranks)
     bool fromBlocks = false;  ///< found by the exploration on the block mask
   };
@@ -76,6 +85,11 @@ public:
     std::vector<float> ss_mm;
     int propagations = 0; ///< DistributedSeedCode runs (fine and block)
     int rounds = 0;       ///< exchanges of those runs and of the cap growths, summed
+    /// The move to the thickest end: AllGathers of the BS code and of the cluster graphs
+    /// (DistributedBoundaryCode, DistributedClusterGraph) and the 64-bit values they sent.
+    int moveExchanges = 0;
+    std::uint64_t moveValues = 0;
+    double boundBs_mm = 0.0; ///< DistributedBoundaryCode's largest bound (0: not computed)
   };
 
   /// Collective, the one call. `layout`: the pieces (held boxes at least one voxel past the

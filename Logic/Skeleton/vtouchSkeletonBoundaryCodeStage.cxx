@@ -164,7 +164,7 @@ void BoundaryCodeStage::linePass(int axis)
         {
           ++b;
         }
-        envelopeOfRun(planeRank.data() + a, planePosition[a], b - a, len, s);
+        envelopeOfRun(planeRank.data() + a, planePosition[a], b - a, len, s, origin[axis]);
         a = b;
       }
       begin = end;
@@ -182,7 +182,8 @@ void BoundaryCodeStage::envelopeOfRun(const std::uint32_t* ranks,
   std::uint32_t first,
   std::uint32_t count,
   std::int64_t len,
-  double spacing)
+  double spacing,
+  std::int64_t offset)
 {
   // Sites (position mm, value mm^2): the bounding background voxels and the run's finite values;
   // lower envelope of the parabolas (Felzenszwalb & Huttenlocher's 1D distance transform).
@@ -190,7 +191,7 @@ void BoundaryCodeStage::envelopeOfRun(const std::uint32_t* ranks,
   siteF.clear();
   if (first > 0)
   {
-    siteX.push_back((static_cast<double>(first) - 1.0) * spacing);
+    siteX.push_back((static_cast<double>(offset + first) - 1.0) * spacing);
     siteF.push_back(0.0);
   }
   for (std::uint32_t q = 0; q < count; ++q)
@@ -198,13 +199,13 @@ void BoundaryCodeStage::envelopeOfRun(const std::uint32_t* ranks,
     const float f = bs[ranks[q]];
     if (f < kInf)
     {
-      siteX.push_back(static_cast<double>(first + q) * spacing);
+      siteX.push_back(static_cast<double>(offset + first + q) * spacing);
       siteF.push_back(f);
     }
   }
   if (static_cast<std::int64_t>(first + count) < len)
   {
-    siteX.push_back(static_cast<double>(first + count) * spacing);
+    siteX.push_back(static_cast<double>(offset + first + count) * spacing);
     siteF.push_back(0.0);
   }
   if (siteX.empty())
@@ -246,7 +247,7 @@ void BoundaryCodeStage::envelopeOfRun(const std::uint32_t* ranks,
   std::size_t k = 0;
   for (std::uint32_t q = 0; q < count; ++q)
   {
-    const double x = static_cast<double>(first + q) * spacing;
+    const double x = static_cast<double>(offset + first + q) * spacing;
     while (envelopeFrom[k + 1] < x)
     {
       ++k;

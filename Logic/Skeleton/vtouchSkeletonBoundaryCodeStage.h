@@ -4,6 +4,7 @@
 #include "vtouchSkeletonRunMeter.h"
 #include "vtouchSkeletonVoxelGrid.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -38,6 +39,12 @@ public:
   /// Joins the thread (if any), rethrows its error and accounts its time and progress. After
   /// this, `bs` is final.
   void await();
+  /// The whole-volume index of the grid's first voxel (default 0: the grid is the volume). The
+  /// envelope's positions are computed from whole indices, so that a piece's code is the whole
+  /// volume's bit for bit on the voxels whose nearest background it holds
+  /// (vtouch::DistributedBoundaryCode; with anisotropic voxels i * spacing is not translation
+  /// invariant in floating point). Call before start().
+  void setOrigin(const std::array<std::int64_t, 3>& origin_Whole) { origin = origin_Whole; }
   /// The stage's largest scratch array, bytes (for RawSkeleton::peakBytes).
   std::size_t scratchBytes() const { return boundaryScratchBytes; }
 
@@ -51,7 +58,8 @@ private:
     std::uint32_t first,
     std::uint32_t count,
     std::int64_t len,
-    double spacing);
+    double spacing,
+    std::int64_t offset);
   void compute();
   void computeOnThread();
   /// On the BS thread: throws Cancelled when the meter's stopRequested is set.
@@ -68,6 +76,7 @@ private:
   std::exception_ptr boundaryError;
   double boundarySeconds = 0.0;
   bool boundaryQuiet = false; // no tick() from the passes (second thread)
+  std::array<std::int64_t, 3> origin{ 0, 0, 0 };
 };
 
 } // namespace skeleton

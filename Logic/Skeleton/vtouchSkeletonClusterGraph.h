@@ -26,8 +26,10 @@ struct Cluster
   std::vector<std::uint32_t> higher; // adjacent clusters of higher bands
   int path = -1;                     // path and point that represent this cluster
   int point = -1;
-  std::uint32_t bestVoxel = 0; // voxel of largest BS code
-  bool onBorder = false;       // touches the volume border (an end cut by the field of view)
+  std::uint32_t bestVoxel = 0;  // voxel of largest BS code
+  bool onBorder = false;        // touches the volume border (an end cut by the field of view)
+  std::uint32_t firstVoxel = 0; // its voxel of smallest linear index
+  std::int64_t indexSum[3] = { 0, 0, 0 }; // of the voxel indices (exact, any order)
   Point_mm centroid() const { return { sum[0] / count, sum[1] / count, sum[2] / count }; }
 };
 

@@ -1,6 +1,9 @@
 // Voxel coding stage 3: clusters and the cluster graph, root choice.
 #include "vtouchSkeletonClusterStage.h"
 
+#include "vtouchSkeletonEndCapRule.h"
+#include "vtouchSkeletonThickerEnd.h"
+
 #include <algorithm>
 
 namespace vtouch
@@ -117,6 +120,7 @@ void ClusterStage::build()
       aux[r] = kLabelled | static_cast<std::uint32_t>(clusters.size());
       clusters.emplace_back();
       clusters.back().band = band(r);
+      clusters.back().firstVoxel = lin; // the set's root: its smallest rank
     }
   }
   // Label of each voxel (its set's cluster) and the cluster sums.
@@ -142,6 +146,7 @@ void ClusterStage::build()
     for (int a = 0; a < 3; ++a)
     {
       c.sum[a] += static_cast<double>(x[a]) * grid.sp[a];
+      c.indexSum[a] += x[a];
     }
     // Ties of BS go to the lower SS code, whatever the visiting order.
     if (c.count == 1 || bs[r] > c.maxBs ||
@@ -202,59 +207,41 @@ void ClusterStage::build()
 std::optional<std::uint32_t> ClusterStage::thickerRoot() const
 {
   const std::vector<Cluster>& clusters = graph.clusters;
-  // Thickness of an end: the largest BS code within a few bands of it (the end cluster itself
-  // is a cap whose BS is small).
-  constexpr std::uint32_t kBands = 8;
-  const auto thickness = [&](std::uint32_t c)
-  {
-    float t = clusters[c].maxBs;
-    for (std::uint32_t k = 0; k < kBands && !clusters[c].lower.empty(); ++k)
-    {
-      std::uint32_t next = clusters[c].lower.front();
-      for (std::uint32_t l : clusters[c].lower)
-      {
-        next = clusters[l].count > clusters[next].count ? l : next;
-      }
-      c = next;
-      t = std::max(t, clusters[c].maxBs);
-    }
-    return t;
-  };
-  // The root's end measured the same way, walking up from the root's cluster (the first in SS
-  // order): a ball of kBands around a rounded cap's apex would see only the cap, and a vessel of
-  // one calibre (a helix) would then always be re-rooted, at the cost of a second SS code.
-  float rootBs = clusters.empty() ? 0.0F : clusters[0].maxBs;
-  for (std::uint32_t c = 0, k = 0; k < kBands && c < clusters.size() && !clusters[c].higher.empty();
-       ++k)
-  {
-    std::uint32_t next = clusters[c].higher.front();
-    for (std::uint32_t h : clusters[c].higher)
-    {
-      next = clusters[h].count > clusters[next].count ? h : next;
-    }
-    c = next;
-    rootBs = std::max(rootBs, clusters[c].maxBs);
-  }
-  std::int64_t best = -1;
-  float bestBs = 0.0F;
-  for (std::uint32_t c = 0; c < clusters.size(); ++c)
-  {
-    if (clusters[c].band > kBands && clusters[c].higher.empty())
-    {
-      const float t = thickness(c);
-      if (best < 0 || t > bestBs)
-      {
-        best = c;
-        bestBs = t;
-      }
-    }
-  }
-  if (best < 0 || bestBs <= 1.2F * rootBs)
+  const std::optional<std::uint32_t> end =
+    thickerEnd(clusters, clusterKeyOrder(clusters, codes.ss, grid.mask));
+  if (!end)
   {
     return std::nullopt;
   }
-  // One root voxel at the centre of the end cap: every trace then converges to one point.
-  return tipStart(grid, clusters[best]);
+  // One root voxel at the centre of the end cap: every trace then converges to one point
+  // (project rule, issue 19 item 2: the centroid from integer index sums, as the end cap's,
+  // vtouchSkeletonEndCapRule.h, so that a distributed run finds the same voxel).
+  const Cluster& c = clusters[*end];
+  const std::array<std::int64_t, 3> v =
+    nearestIndex(indexCentroid({ c.indexSum[0], c.indexSum[1], c.indexSum[2] }, c.count),
+      { grid.nx, grid.ny, grid.nz });
+  const std::uint64_t lin = grid.linOf(v[0], v[1], v[2]);
+  if (grid.mask.test(lin))
+  {
+    return static_cast<std::uint32_t>(lin);
+  }
+  // Else its voxel of largest BS, ties to the lower SS, then to the smaller index (c.bestVoxel
+  // leaves the last tie to the visiting order, which a distributed run does not reproduce; the
+  // tracer keeps that one, so that its outputs do not change). Rare: a scan of the component.
+  std::uint32_t best = c.bestVoxel;
+  const float* const ss = codes.ss.data();
+  const float* const bs = codes.bs.data();
+  for (const std::uint32_t u : codes.order)
+  {
+    const std::uint32_t r = grid.mask.rank(u);
+    const std::uint32_t b = grid.mask.rank(best);
+    if (graph.clusterOfRank(r) == *end &&
+        (bs[r] > bs[b] || (bs[r] == bs[b] && (ss[r] < ss[b] || (ss[r] == ss[b] && u < best)))))
+    {
+      best = u;
+    }
+  }
+  return best;
 }
 
 std::uint32_t ClusterStage::tipStart(const VoxelGrid& grid, const Cluster& c)

@@ -35,7 +35,12 @@ public:
   /// the bifurcations on the way (the geodesic hugs the inner wall of a sharp turn). Rooting the
   /// code at the thickest extremity (the inflow trunk of a vascular tree) makes every trace enter
   /// the trunk at an obtuse angle. The root voxel of the thickest end when it is clearly (20 %)
-  /// thicker than the current root's end; the caller then propagates again and rebuilds.
+  /// thicker than the current root's end; the caller then propagates again and rebuilds. The
+  /// rule is skeleton::thickerEnd (vtouchSkeletonThickerEnd.h, shared with the distributed run,
+  /// vtouch::DistributedRootChoice), read in the clusters' key order; the voxel is the one at the
+  /// end cluster's integer centroid when vessel, else its voxel of largest BS (ties to the lower
+  /// SS, then the smaller index). Project rules (issue 19 item 2): order and centroid are ones a
+  /// distributed run reproduces.
   std::optional<std::uint32_t> thickerRoot() const;
 
   /// Where a trace starts in cluster `c`: the voxel at its centroid when it is vessel (the last

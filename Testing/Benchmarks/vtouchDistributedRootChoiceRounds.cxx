@@ -1,10 +1,11 @@
 // vesseltouch-distributed-root: the automatic root across pieces (vtouch::DistributedRootChoice,
 // issue 19 item 2) on the raw-angiogram phantom's vessel tree, thresholded as
 // vesseltouch-distributed-seedcode thresholds it, split in 2, 4 and 8 pieces as the executive
-// splits (ranks as threads of one process): the components and roots every rank got against the
-// single run's (VoxelCoder without a seed: RawSkeleton::roots, the extremity), the propagations
-// and exchanges it took, and the held voxels whose SS differs from the single run's field from
-// those roots (must be 0).
+// splits (ranks as threads of one process): the components and final roots every rank got
+// against the single run's (VoxelCoder without a seed: RawSkeleton::roots, the thickest end when
+// moved, else the extremity; and the extremity and the move), the propagations and exchanges it
+// took, the move's exchanges (BS code and cluster graphs) and their 64-bit values, and the held
+// voxels whose SS differs from the single run's final field (must be 0).
 //
 //   vesseltouch-distributed-root [N=112] [ghost margin voxels=8] [segments=60]
 #include "vtouchDistributedRootChoice.h"
@@ -80,7 +81,7 @@ int main(int argc, char** argv)
   for (const RawComponentRoot& c : skeleton.roots)
   {
     moved += c.moved;
-    for (const Index& v : c.extremity)
+    for (const Index& v : c.moved ? std::vector<Index>{ c.thickest } : c.extremity)
     {
       sources.push_back(static_cast<std::uint32_t>(grid.linOf(v[0], v[1], v[2])));
     }
@@ -99,8 +100,9 @@ int main(int argc, char** argv)
     static_cast<unsigned long long>(whole.vesselCount()),
     skeleton.roots.size(),
     moved);
-  std::printf("| pieces | G | components | roots as the single run's (ranks) | on blocks | "
-              "propagations | exchanges | SS differing |\n");
+  std::printf("| pieces | G | components | roots as the single run's (ranks) | on blocks | moved | "
+              "propagations | exchanges | move: exchanges | move: values | BS bound mm | "
+              "SS differing |\n");
   for (const std::array<int, 3>& counts :
     { std::array<int, 3>{ 1, 1, 2 }, std::array<int, 3>{ 1, 2, 2 }, std::array<int, 3>{ 2, 2, 2 } })
   {
@@ -127,29 +129,38 @@ int main(int argc, char** argv)
               !out.ok || out.ss_mm[mask.rank(lin)] != expected;
           });
       });
-    int same = 0, onBlocks = 0;
+    int same = 0, onBlocks = 0, movedHere = 0;
     long differ = 0;
     for (std::size_t r = 0; r < results.size(); ++r)
     {
       bool equal = results[r].ok && results[r].components.size() == skeleton.roots.size();
       for (std::size_t k = 0; equal && k < skeleton.roots.size(); ++k)
       {
-        equal = results[r].components[k].roots_Whole == sorted(skeleton.roots[k].extremity);
-        onBlocks += r == 0 && results[r].components[k].fromBlocks;
+        const DistributedRootChoice::ComponentRoot& got = results[r].components[k];
+        const RawComponentRoot& want = skeleton.roots[k];
+        equal = got.extremity_Whole == sorted(want.extremity) && got.moved == want.moved &&
+                got.roots_Whole ==
+                  (want.moved ? std::vector<Index>{ want.thickest } : sorted(want.extremity));
+        onBlocks += r == 0 && got.fromBlocks;
+        movedHere += r == 0 && got.moved;
       }
       same += equal;
       differ += differing[r];
     }
     const DistributedRootChoice::Result& first = results.front();
-    std::printf("| %zu | %d | %zu | %d of %zu | %d | %d | %d | %ld |%s%s\n",
+    std::printf("| %zu | %d | %zu | %d of %zu | %d | %d | %d | %d | %d | %llu | %.2f | %ld |%s%s\n",
       pieces.size(),
       margin,
       first.components.size(),
       same,
       results.size(),
       onBlocks,
+      movedHere,
       first.propagations,
       first.rounds,
+      first.moveExchanges,
+      static_cast<unsigned long long>(first.moveValues),
+      first.boundBs_mm,
       differ,
       first.ok ? "" : " ",
       first.message.c_str());

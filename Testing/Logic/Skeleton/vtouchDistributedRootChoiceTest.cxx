@@ -85,11 +85,14 @@ SparseVesselMask randomTree(const Dims& d, unsigned seed, double trunkRadius)
     });
 }
 
-/// The single run: VoxelCoder without a seed, its components' first roots (sorted), and the SS
-/// field from them (SeedCodeStage::propagate on the whole mask, indexed by rank).
+/// The single run: VoxelCoder without a seed, its components' final roots (the thickest end's
+/// when moved, else the extremity), first roots (the extremity, sorted) and moves, and the SS
+/// field from the final roots (SeedCodeStage::propagate on the whole mask, indexed by rank).
 struct SingleRun
 {
   std::vector<std::vector<Index>> roots;
+  std::vector<std::vector<Index>> extremities;
+  std::vector<bool> moved;
   std::vector<float> ss;
 };
 
@@ -111,6 +114,12 @@ SingleRun singleRun(const SparseVesselMask& mask,
       r.end(),
       [](const Index& a, const Index& b)
       { return std::make_tuple(a[2], a[1], a[0]) < std::make_tuple(b[2], b[1], b[0]); });
+    out.extremities.push_back(r);
+    out.moved.push_back(c.moved);
+    if (c.moved)
+    {
+      r = { c.thickest };
+    }
     out.roots.push_back(r);
     for (const Index& v : r)
     {
@@ -175,10 +184,25 @@ std::vector<RankResult> runDistributed(const SparseVesselMask& whole,
   return results;
 }
 
-/// Every rank's roots and field are the single run's; returns the components found on blocks.
-int expectTheSingleRuns(const std::vector<RankResult>& results, const SingleRun& single)
+/// What rank 0 saw: components found on blocks, roots moved to the thickest end.
+struct Seen
 {
   int fromBlocks = 0;
+  int moved = 0;
+  int kept = 0;
+  Seen& operator+=(const Seen& o)
+  {
+    fromBlocks += o.fromBlocks;
+    moved += o.moved;
+    kept += o.kept;
+    return *this;
+  }
+};
+
+/// Every rank's roots (final and first), moves and field are the single run's.
+Seen expectTheSingleRuns(const std::vector<RankResult>& results, const SingleRun& single)
+{
+  Seen seen;
   for (std::size_t r = 0; r < results.size(); ++r)
   {
     SCOPED_TRACE("rank " + std::to_string(r));
@@ -188,12 +212,20 @@ int expectTheSingleRuns(const std::vector<RankResult>& results, const SingleRun&
     for (std::size_t c = 0; c < std::min(got.components.size(), single.roots.size()); ++c)
     {
       EXPECT_EQ(got.components[c].roots_Whole, single.roots[c]) << "component " << c;
-      fromBlocks += r == 0 && got.components[c].fromBlocks;
+      EXPECT_EQ(got.components[c].extremity_Whole, single.extremities[c]) << "component " << c;
+      EXPECT_EQ(got.components[c].moved, single.moved[c]) << "component " << c;
+      if (r == 0)
+      {
+        seen.fromBlocks += got.components[c].fromBlocks;
+        seen.moved += got.components[c].moved;
+        seen.kept += !got.components[c].moved;
+      }
     }
     EXPECT_EQ(results[r].differing, 0) << results[r].firstDiffer;
     EXPECT_EQ(got.rounds, results.front().result.rounds); // every rank took every step
+    EXPECT_EQ(got.moveExchanges, results.front().result.moveExchanges);
   }
-  return fromBlocks;
+  return seen;
 }
 
 const std::array<std::array<int, 3>, 3> kSplits{ { { 1, 1, 2 }, { 1, 2, 2 }, { 2, 2, 2 } } };
@@ -201,6 +233,7 @@ const std::array<std::array<int, 3>, 3> kSplits{ { { 1, 1, 2 }, { 1, 2, 2 }, { 2
 TEST(DistributedRootChoice, EveryRankGetsTheSingleRunsRootOnSmallRandomTreesIn2And4And8Pieces)
 {
   const Dims dims{ 44, 40, 48 };
+  Seen seen;
   for (unsigned trial = 0; trial < 6; ++trial)
   {
     const SparseVesselMask whole = randomTree(dims, 1900 + trial, 2.0);
@@ -213,16 +246,19 @@ TEST(DistributedRootChoice, EveryRankGetsTheSingleRunsRootOnSmallRandomTreesIn2A
       SCOPED_TRACE("trial " + std::to_string(trial) + ", split " + std::to_string(counts[0]) +
                    std::to_string(counts[1]) + std::to_string(counts[2]));
       const int margin = 1 + static_cast<int>(trial % 3);
-      expectTheSingleRuns(
+      seen += expectTheSingleRuns(
         runDistributed(whole, &single, spacing_mm, layouts(dims, counts, margin)), single);
     }
   }
+  // Neither half of the rule was vacuous: some roots moved to the thickest end, some stayed.
+  EXPECT_GT(seen.moved, 0);
+  EXPECT_GT(seen.kept, 0);
 }
 
 TEST(DistributedRootChoice, EveryRankGetsTheSingleRunsRootOnLargeTreesExploredOnBlocks)
 {
   const Dims dims{ 120, 112, 128 };
-  int fromBlocks = 0;
+  Seen seen;
   unsigned seed = 1950;
   for (unsigned trial = 0; trial < 3; ++trial)
   {
@@ -244,11 +280,12 @@ TEST(DistributedRootChoice, EveryRankGetsTheSingleRunsRootOnLargeTreesExploredOn
       SCOPED_TRACE("trial " + std::to_string(trial) + ", split " + std::to_string(counts[0]) +
                    std::to_string(counts[1]) + std::to_string(counts[2]));
       const int margin = 2 + 6 * static_cast<int>(trial % 2);
-      fromBlocks += expectTheSingleRuns(
+      seen += expectTheSingleRuns(
         runDistributed(whole, &single, spacing_mm, layouts(dims, counts, margin)), single);
     }
   }
-  EXPECT_GT(fromBlocks, 0); // the exploration on blocks ran and its root was kept
+  EXPECT_GT(seen.fromBlocks, 0); // the exploration on blocks ran and its root was kept
+  EXPECT_GT(seen.moved, 0);      // and roots found on blocks moved to the thickest end
 }
 
 TEST(DistributedRootChoice, EveryComponentIsRootedAsTheSingleRunRootsItAmongSpecks)
