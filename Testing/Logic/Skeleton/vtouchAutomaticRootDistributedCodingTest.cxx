@@ -301,5 +301,69 @@ TEST(VoxelCodingSkeletonFilterGlobalSeedCode, TheAutomaticRootsFieldCodesTheSing
   EXPECT_LE(farthestChebyshev(b, a), 1);
 }
 
+/// A binary image of rank `l`'s piece of `whole` (indexed from the piece's first voxel).
+ByteImage::Pointer pieceImage(const SparseVesselMask& whole, const PieceLayout& l)
+{
+  return imageOf(pieceMask(whole, l));
+}
+
+TEST(VoxelCodingSkeletonFilterGlobalSeedCode, EachComponentsTracesJoinTheirOwnRoot)
+{
+  // Four tubes along z (separate components) split in z: the automatic roots all lie at the top
+  // (the extremity farthest from each tube's first voxel), so the upper piece codes a field with
+  // four roots. The last tube reaches 4 voxels higher: its root is the last root cluster and its
+  // tip the first traced. Every trace must join the root band of its own tube: before the fix
+  // (TraceStage joined the last root cluster) the other tubes' traces joined the last tube's
+  // root, paths 12 voxels or more across.
+  const SparseVesselMask whole = skeleton::test::makeMask({ 52, 20, 40 },
+    [](const skeleton::Point_mm& p)
+    {
+      for (double x : { 8.0, 20.0, 32.0, 44.0 })
+      {
+        const double dx = p[0] - x, dy = p[1] - 10;
+        if (p[2] >= 3 && p[2] <= (x > 40 ? 37 : 33) && dx * dx + dy * dy <= 6.25)
+        {
+          return true;
+        }
+      }
+      return false;
+    });
+  const std::vector<PieceLayout> pieces = layouts(whole.dims(), { 1, 1, 2 }, 2);
+  std::vector<RawSkeleton> skeletons(pieces.size());
+  std::vector<std::size_t> roots(pieces.size());
+  InProcessWorld world(static_cast<int>(pieces.size()));
+  using Filter = VoxelCodingSkeletonFilter<ByteImage>;
+  world.run(
+    [&](int r, RankCollectives& c)
+    {
+      const PieceLayout& l = pieces[static_cast<std::size_t>(r)];
+      AutomaticRootDistributedCoding coding(c, l, kSpacing_mm, {});
+      auto filter = Filter::New();
+      filter->SetInput(pieceImage(whole, l));
+      filter->SetGlobalSeedCode([&](SparseVesselMask& mask) { return coding.code(mask); });
+      filter->Update();
+      skeletons[static_cast<std::size_t>(r)] = filter->GetRawSkeleton();
+      roots[static_cast<std::size_t>(r)] = coding.report().components.size();
+    });
+  EXPECT_EQ(roots[0], 4U);
+  for (std::size_t r = 0; r < pieces.size(); ++r)
+  {
+    const RawSkeleton& s = skeletons[r];
+    EXPECT_GE(s.paths.size(), 4U) << "rank " << r << ": a path per tube at least";
+    for (const RawSkeletonPath& p : s.paths)
+    {
+      // A path stays in its tube (radius 2.5 voxels around x = 8, 20, 32 or 44): a trace joined
+      // to another tube's root runs 12 voxels or more across, through the background.
+      std::int64_t lo = p.voxels.front()[0], hi = lo;
+      for (const Index& v : p.voxels)
+      {
+        lo = std::min(lo, v[0]);
+        hi = std::max(hi, v[0]);
+      }
+      EXPECT_LE(hi - lo, 4) << "rank " << r << ": a path across tubes, x " << lo << ".." << hi;
+    }
+  }
+}
+
 } // namespace
 } // namespace vtouch
