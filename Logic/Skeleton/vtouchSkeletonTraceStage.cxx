@@ -59,7 +59,21 @@ std::size_t TraceStage::run()
     const bool atRoot =
       !onlyRootBandIsRoot ||
       (!t.voxels.empty() && tracer.codes.ss[grid.mask.rank(t.voxels.back())] < grid.bandWidth);
-    if (t.path < 0 && out.paths.size() > firstPath && atRoot)
+    if (onlyRootBandIsRoot && t.path < 0 && atRoot)
+    {
+      // The global field may hold several roots (the automatic roots across the ranks: one per
+      // component, issue 19 item 2): join the root band's cluster this trace reached, when a
+      // path already represents it (the first trace to reach it becomes that path). The single
+      // run's rule below joins the last root cluster, which holds one root per coded component.
+      const std::uint32_t reached =
+        tracer.graph.clusterOfRank(static_cast<std::uint32_t>(grid.mask.rank(t.voxels.back())));
+      if (clusters[reached].band == 0 && clusters[reached].path >= 0)
+      {
+        t.path = clusters[reached].path; // reached its root beside the first path there
+        t.point = clusters[reached].point;
+      }
+    }
+    else if (t.path < 0 && out.paths.size() > firstPath && atRoot)
     {
       t.path = clusters[root].path; // reached the root beside the first path
       t.point = clusters[root].point;

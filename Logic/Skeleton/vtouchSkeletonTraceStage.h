@@ -26,7 +26,9 @@ public:
   /// globalSs_mm) has local minima of SS where the vessels enter it, besides the root (band 0)
   /// when it holds it; a trace that ends at such an entry, on no path, stays a path of its own
   /// (its end is a cut end at the piece's face, for the stitch) instead of joining the first
-  /// path at the root. Off (the single run): every trace ends at the root.
+  /// path at the root. A trace that reaches the root band joins the root-band cluster it reached
+  /// (the field may hold several roots: the automatic roots across the ranks, one per
+  /// component). Off (the single run): every trace ends at the root.
   TraceStage(SkeletonTracer& tracer, double minimumBranchLength, bool onlyRootBandIsRoot = false);
 
   /// Traces the component's tips; returns the number of paths it emitted.

@@ -4,7 +4,7 @@
 #include "vtouchDistributedCenterline.h"
 #include "vtouchDistributedRequest.h"
 #include "vtouchDistributedRawRegion.h"
-#include "vtouchDistributedSeededCode.h"
+#include "vtouchDistributedGlobalField.h"
 #include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchQSkeletonToPolyData.h"
 #include "vtouchRangeForeground.h"
@@ -38,6 +38,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <new>
@@ -46,7 +47,6 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkVesselTouchCenterlineFilter);
-
 
 vtkVesselTouchCenterlineFilter::vtkVesselTouchCenterlineFilter()
 {
@@ -288,8 +288,9 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
       }
     }
   }
-  // Distributed seeded modes: the coder codes with the global SS field, whose root is the seed.
-  vtouch::DistributedSeededCode* global = this->DistributedSeedCode;
+  // Distributed with the global SS field (seeded, or the unseeded mask's automatic roots): the
+  // coder codes with it instead of propagating from a root of its own.
+  vtouch::DistributedGlobalField* global = this->DistributedField;
   const vtouch::CoderSettings s{ lower,
     upper,
     this->UseSeedPoint && codeFromSeed && !global,
@@ -437,13 +438,19 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   hooks.ghostMarginVoxels = [this](const double spacing[3])
   { return this->GetGhostMarginVoxels(spacing); };
   hooks.automaticIntensityRange = this->AutomaticIntensityRange;
-  // The seeded modes (issue 19 item 2): every rank codes its piece with the single run's SS
-  // field, computed across the ranks from the seed (vtouch::DistributedSeededCode, the coder's
-  // hook), instead of from a root of its own. At full resolution (project rule: a coarse block
-  // grid starts at each piece's first voxel, not on one grid of the whole volume): an explicit
-  // DownsampleFactor > 1 keeps each rank's own roots, as before.
-  const bool globalSeedCode = this->UseSeedPoint && this->DownsampleFactor <= 1;
-  std::unique_ptr<vtouch::DistributedSeededCode> seeded;
+  // The global SS field (issue 19 item 2): every rank codes its piece with the single run's SS
+  // field, computed across the ranks (vtouch::DistributedGlobalField, the coder's hook), instead
+  // of from roots of its own: from the seed in the seeded modes, from the single run's automatic
+  // roots on an unseeded thresholded or binary mask. The raw mode without a seed keeps each
+  // rank's own roots: each rank estimates its range and region on its piece alone, so its mask
+  // is not its piece of one whole mask (DistributedRootChoice's precondition). At full
+  // resolution (project rule: a coarse block grid starts at each piece's first voxel, not on one
+  // grid of the whole volume): an explicit DownsampleFactor > 1 keeps each rank's own roots.
+  const bool fullResolution = this->DownsampleFactor <= 1;
+  const bool globalSeedCode = this->UseSeedPoint && fullResolution;
+  const bool globalRootCode =
+    !this->UseSeedPoint && !this->AutomaticIntensityRange && fullResolution;
+  std::unique_ptr<vtouch::DistributedGlobalField> field;
   const auto controller = []
   {
     return vtouch::DistributedCenterline::controllerFor(
@@ -486,9 +493,9 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
           seed_Whole[a] = region.seedIndex[a] + e[2 * a] - whole[2 * a];
         }
       }
-      seeded = std::make_unique<vtouch::DistributedSeededCode>(
-        controller(), input, whole, here, seed_Whole, true);
-      this->DistributedSeedCode = seeded.get();
+      field =
+        vtouch::DistributedGlobalField::seeded(controller(), input, whole, here, seed_Whole, true);
+      this->DistributedField = field.get();
     };
   }
   else if (globalSeedCode)
@@ -496,25 +503,40 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     hooks.beforePiece = [&](vtkImageData* input, const vtouch::VoxelExtent6& whole)
     {
       const std::array<std::int64_t, 3> seed_Whole =
-        input ? vtouch::DistributedSeededCode::seedVoxel_Whole(input, this->SeedPoint, whole)
+        input ? vtouch::DistributedGlobalField::seedVoxel_Whole(input, this->SeedPoint, whole)
               : std::array<std::int64_t, 3>{ -1, -1, -1 };
-      seeded = std::make_unique<vtouch::DistributedSeededCode>(
+      field = vtouch::DistributedGlobalField::seeded(
         controller(), input, whole, input != nullptr, seed_Whole, false);
-      this->DistributedSeedCode = seeded.get();
+      this->DistributedField = field.get();
     };
   }
-  if (globalSeedCode)
+  else if (globalRootCode)
+  {
+    hooks.beforePiece = [&](vtkImageData* input, const vtouch::VoxelExtent6& whole)
+    {
+      // The coder's own settings: its MinimumComponentSize in input voxels (the field is coded
+      // at full resolution), and the cluster width it leaves at its default (0: the largest
+      // spacing; VoxelCodingSkeletonFilter's ClusterWidth, never set here).
+      vtouch::DistributedRootChoice::Parameters parameters;
+      parameters.minimumComponentSize =
+        static_cast<std::uint64_t>(std::max(1, this->MinimumComponentSize));
+      parameters.clusterWidth_mm = 0.0;
+      field = vtouch::DistributedGlobalField::automaticRoot(controller(), input, whole, parameters);
+      this->DistributedField = field.get();
+    };
+  }
+  if (globalSeedCode || globalRootCode)
   {
     hooks.afterExtract = [&]
     {
-      this->DistributedSeedCode = nullptr;
-      if (seeded)
+      this->DistributedField = nullptr;
+      if (field)
       {
-        seeded->finish(); // collective: a rank whose run stopped before its coder joins here
+        field->finish(); // collective: a rank whose run stopped before its coder joins here
       }
     };
   }
-  if (raw || globalSeedCode)
+  if (raw || globalSeedCode || globalRootCode)
   {
     hooks.afterPiece = [&](vtkImageData* input, vtkPolyData* own, vtouch::QSkeleton& skeleton)
     {
@@ -523,9 +545,9 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       {
         vtouch::DistributedRawRegion::addReport(own->GetFieldData(), regionReport);
       }
-      if (seeded)
+      if (field)
       {
-        seeded->addReport(own->GetFieldData());
+        field->addReport(own->GetFieldData());
       }
       if (rest.ok)
       {
@@ -536,7 +558,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   const vtouch::DistributedRequest::Outcome outcome =
     vtouch::DistributedRequest::run(inputVector, output, hooks);
   this->DistributedRegion = nullptr;
-  this->DistributedSeedCode = nullptr;
+  this->DistributedField = nullptr;
   this->ExtractionMessage = outcome.message;
   if (!outcome.firstRank)
   {

@@ -32,7 +32,7 @@
 namespace vtouch
 {
 struct CandidateRegionOutcome; // the distributed raw seeded mode's region (RequestDistributed)
-class DistributedSeededCode;   // the distributed seeded modes' global SS code (RequestDistributed)
+class DistributedGlobalField;  // the distributed modes' global SS field (RequestDistributed)
 class QSkeleton;
 }
 #endif
@@ -222,9 +222,10 @@ private:
   /// Set by RequestDistributed in the raw seeded mode while ExtractVolume runs on the piece: the
   /// candidate region the ranks computed together, used instead of the piece's own.
   const vtouch::CandidateRegionOutcome* DistributedRegion = nullptr;
-  /// Set by RequestDistributed in the seeded modes while ExtractVolume runs on the piece: the
-  /// global SS code across the ranks, which the coder codes with (its hook).
-  vtouch::DistributedSeededCode* DistributedSeedCode = nullptr;
+  /// Set by RequestDistributed (the seeded modes, and the unseeded thresholded or binary mask)
+  /// while ExtractVolume runs on the piece: the global SS field across the ranks, which the
+  /// coder codes with (its hook).
+  vtouch::DistributedGlobalField* DistributedField = nullptr;
 #endif
 };
 

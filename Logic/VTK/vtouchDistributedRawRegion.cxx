@@ -4,7 +4,7 @@
 #include "vtouchControllerCollectives.h"
 #include "vtouchDistributedCandidateRegion.h"
 #include "vtouchDistributedCenterline.h"
-#include "vtouchDistributedSeededCode.h"
+#include "vtouchDistributedGlobalField.h"
 #include "vtouchSeedComponentSplit.h"
 #include "vtouchTypedScalars.h"
 
@@ -119,7 +119,7 @@ CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* cont
   out.automatic = true;
   const bool usable = piece && scalars && scalars->GetNumberOfComponents() == 1 &&
                       scalars->GetNumberOfTuples() == piece->GetNumberOfPoints();
-  const PieceLayout layout = DistributedSeededCode::gatherLayout(c, piece, usable, whole);
+  const PieceLayout layout = DistributedGlobalField::gatherLayout(c, piece, usable, whole);
   try
   {
     layout.check(); // the same layout, hence the same verdict, on every rank

@@ -10,7 +10,9 @@ paths, points, vessel ends, bifurcations and loops (vtouch_skeleton_graph.graph)
 polyline, and the stitch's field arrays (Stitch*). The scaling bench's tree:
 `scaling_bench.write_tree_nrrd(path, (256, 256, 256))` (Utilities/bench). With --seed (world mm)
 the run is seeded (UseSeedPoint: the distributed run codes with the global SS code, its rounds
-printed as SeedCodeRounds). A measurement, not a test: nothing is asserted.
+printed as SeedCodeRounds); without, the distributed run codes with the single run's automatic
+roots (RootChoiceRounds, RootChoicePropagations, RootChoiceComponents, RootChoiceRoots: whole
+voxel indices, to seed a 1-rank run there with --seed). A measurement, not a test: nothing is asserted.
 """
 
 import argparse
@@ -44,7 +46,12 @@ def measure(volume, ranks, lower, upper, seed=None):
         fd = data.GetFieldData()
         stitch = {fd.GetArrayName(i): fd.GetArray(i).GetTuple(0)[0]
                   for i in range(fd.GetNumberOfArrays())
-                  if fd.GetArrayName(i).startswith(("Stitch", "SeedCode"))}
+                  if fd.GetArrayName(i).startswith(("Stitch", "SeedCode", "RootChoice"))}
+        roots = fd.GetArray("RootChoiceRoots")
+        if roots is not None:
+            # Every root voxel of every component (whole index), not only the first.
+            stitch["RootChoiceRoots"] = [tuple(int(v) for v in roots.GetTuple(i))
+                                         for i in range(roots.GetNumberOfTuples())]
         message = fd.GetAbstractArray("ExtractionMessage")
         if message is not None and message.GetNumberOfValues() and message.GetValue(0):
             print("ranks %d: message %r" % (ranks, message.GetValue(0)))

@@ -23,6 +23,13 @@ thresholded path (AutomaticIntensityRange off):
   loop stage keeps the second leg as a path attached where the fronts met, ending at its entry
   (h19l), and the stitch closes the loop (Docs/CLIENT-SERVER.md, "The seeded modes coded with the
   global field").
+- unseeded, every case (issue 19 item 2, h19u): every rank codes with the single run's SS field
+  from the single run's automatic root (vtouch::DistributedRootChoice, RootChoiceRounds >= 2);
+  after the server session a 1-rank server runs each case seeded at that root (the single run
+  from the same root): the stitched skeleton has its topology and every point within 0.1 voxel
+  (the ring: within the root envelope + 0.1, not exact yet), and where the unseeded single run
+  equals it (it keeps its root: all four phantoms, measured) the same against the unseeded
+  single run.
 Exits non-zero on any failure.
 """
 
@@ -56,6 +63,9 @@ CASES = {"tree": (5, True), "loop network": (6, True), "ring": (0, False), "Y": 
 SEEDED = ("tree", "loop network", "ring", "Y")
 SEEDED_TOLERANCE_VOXELS = 0.1  # the issue's 0.1 voxel
 SEEDED_REFERENCES = {}
+# The unseeded distributed runs: the root they coded from (whole index = world mm here) and the
+# stitched graph; checked after the server session against a 1-rank run seeded there.
+UNSEEDED = {}
 FILTER = dict(AutomaticIntensityRange=0, LowerThreshold=550.0, DistributedExtraction=1,
               LargestVesselRadius=RADIUS_FRACTION * N)
 
@@ -134,7 +144,7 @@ def check_pieces(name, data):
 
 
 def distributed(references):
-    for name, (path, reference, envelope) in references.items():
+    for name, (path, reference, _) in references.items():
         volume = simple.OpenDataFile(path)
         centerline = simple.VesselCenterline(Input=volume, **FILTER)
         centerline.UpdatePipeline()
@@ -164,17 +174,16 @@ def distributed(references):
                                           "CoderCoderAllSeconds", "CoderMaskSeconds")]
         check(all(t is not None and t[0][0] >= 0.0 for t in timed) and timed[2][0][0] > 0.0,
               "%s: the gather, stitch and coder stage times are reported (%s)" % (name, timed))
-        check(topology(got) == topology(reference),
-              "%s: the stitched skeleton has the built-in topology (%s vs %s)"
-              % (name, topology(got), topology(reference)))
+        rounds = field(data, "RootChoiceRounds")
+        roots = field(data, "RootChoiceRoots") or []
+        print("  automatic root across the ranks: %s rounds, %s propagations, roots %s"
+              % (rounds, field(data, "RootChoicePropagations"), roots))
+        check(rounds is not None and rounds[0][0] >= 2,
+              "%s: the automatic root's field ran in rounds across the face (%s)" % (name, rounds))
+        check(len(roots) == 1, "%s: one component, one root voxel (%s)" % (name, roots))
         for b in reference["bifurcations"]:
             print("  bifurcation at z = %.1f (the piece face is z = 63)" % b[2])
-        worst = max(farthest_point_voxels(got["points"], reference["points"], 1.0),
-                    farthest_point_voxels(reference["points"], got["points"], 1.0))
-        tolerance = 0.1 if CASES[name][1] else envelope + 0.1
-        print("  largest point distance %.3f voxel (tolerance %.3f)" % (worst, tolerance))
-        check(worst <= tolerance, "%s: every point within %.3f voxel of the built-in run "
-              "(%.3f)" % (name, tolerance, worst))
+        UNSEEDED[name] = ([float(v) for v in roots[0]] if roots else None, got)
         simple.Delete(centerline)
         if name in SEEDED:
             distributed_seeded(name, volume)
@@ -204,12 +213,79 @@ def distributed_seeded(name, volume):
     simple.Delete(centerline)
 
 
+def rooted_references(references):
+    """On a 1-rank server (the single run, ExtractVolume): each case seeded at the root the
+    distributed run chose. A seeded single run codes from its root as given, so this is the
+    single run's skeleton from the automatic root's extremity; where the unseeded single run
+    (the reference) equals it, the single run did not move its root to a thicker end."""
+    rooted = {}
+    for name, (path, _, _) in references.items():
+        root = UNSEEDED.get(name, (None, None))[0]
+        if root is None:
+            continue
+        volume = simple.OpenDataFile(path)
+        centerline = simple.VesselCenterline(Input=volume, UseSeedPoint=1, SeedPoint=root,
+                                             **FILTER)
+        centerline.UpdatePipeline()
+        rooted[name] = graph(sm.Fetch(centerline), 1.0)
+        simple.Delete(centerline)
+        simple.Delete(volume)
+    return rooted
+
+
+def check_unseeded(references, rooted):
+    """The unseeded distributed runs against the single run from the same root and, where the
+    single run keeps that root, against the unseeded single run itself."""
+    for name, (_, reference, envelope) in references.items():
+        if name not in UNSEEDED or name not in rooted:
+            check(False, "%s: no unseeded distributed run or no rooted reference" % name)
+            continue
+        got = UNSEEDED[name][1]
+        single = rooted[name]
+        moved = topology(single) != topology(reference) or max(
+            farthest_point_voxels(single["points"], reference["points"], 1.0),
+            farthest_point_voxels(reference["points"], single["points"], 1.0)) > 1e-6
+        to_rooted = max(farthest_point_voxels(got["points"], single["points"], 1.0),
+                        farthest_point_voxels(single["points"], got["points"], 1.0))
+        to_reference = max(farthest_point_voxels(got["points"], reference["points"], 1.0),
+                           farthest_point_voxels(reference["points"], got["points"], 1.0))
+        print("%s unseeded on 2 ranks: %s; the single run %s its root (from the root: %s, "
+              "%.3f voxel; unseeded single run: %s, %.3f voxel)"
+              % (name, topology(got), "moves" if moved else "keeps", topology(single),
+                 to_rooted, topology(reference), to_reference))
+        # 0.1 voxel where each rank's grown piece holds every vessel it owns a part of whole;
+        # the ring, longer than a grown piece, is not exact yet (measured 2.10 voxel from the
+        # same root: Docs/CLIENT-SERVER.md, "The automatic root across the ranks, wired"), so
+        # there the old root envelope + 0.1 voxel stays.
+        tolerance = 0.1 if CASES[name][1] else envelope + 0.1
+        check(topology(got) == topology(single) and to_rooted <= tolerance,
+              "%s: the single run's topology and every point within %.3f voxel from the same "
+              "root (%s vs %s, %.3f voxel)" % (name, tolerance, topology(got), topology(single),
+                                               to_rooted))
+        if not moved:
+            check(topology(got) == topology(reference) and to_reference <= tolerance,
+                  "%s: the unseeded single run's topology and every point within %.3f voxel "
+                  "(%s vs %s, %.3f voxel)" % (name, tolerance, topology(got),
+                                              topology(reference), to_reference))
+        else:
+            # Until the move to the thickest end is done across the ranks (h19t): the topology
+            # and the root envelope (Docs/CLIENT-SERVER.md).
+            check(topology(got) == topology(reference) and to_reference <= envelope + 0.1,
+                  "%s: the built-in topology and every point within the root envelope + 0.1 "
+                  "voxel (%s vs %s, %.3f voxel)" % (name, topology(got), topology(reference),
+                                                    to_reference))
+
+
 def main():
     folder = tempfile.mkdtemp(prefix="vtouch-cs-distributed-")
     try:
         references = builtin_references(folder)
         simple.Disconnect()
         run_connected(PLUGIN, check, lambda: distributed(references))
+        rooted = {}
+        run_connected(PLUGIN, check, lambda: rooted.update(rooted_references(references)),
+                      ranks=1)
+        check_unseeded(references, rooted)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     CHECK.finish()
