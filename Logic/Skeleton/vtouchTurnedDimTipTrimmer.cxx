@@ -75,7 +75,7 @@ double turn_deg(const Vec3& a, const Vec3& b)
 
 bool TurnedDimTipTrimmer::isTurnedDimTip(const Evidence& e,
   const SectionGeometry& geometry,
-  const Vec3& heading,
+  const Vec3& heading_World,
   const Vec3& p_World_mm,
   const Vec3& q_World_mm,
   const Settings& s)
@@ -98,7 +98,7 @@ bool TurnedDimTipTrimmer::isTurnedDimTip(const Evidence& e,
     return false;
   }
   // 2. Turned off the path's heading.
-  if (turn_deg(heading, q_World_mm - p_World_mm) <= s.maximumTurn_deg)
+  if (turn_deg(heading_World, q_World_mm - p_World_mm) <= s.maximumTurn_deg)
   {
     return false;
   }

@@ -64,10 +64,10 @@ public:
   };
 
   /// True when q (the last point of a free end) is a turned dim tip: the three conditions above,
-  /// with p the point before it and `heading` the path's direction at p (any length).
+  /// with p the point before it and `heading_World` the path's direction at p (any length).
   static bool isTurnedDimTip(const Evidence& evidence,
     const SectionGeometry& geometry,
-    const Vec3& heading,
+    const Vec3& heading_World,
     const Vec3& p_World_mm,
     const Vec3& q_World_mm,
     const Settings& settings);
