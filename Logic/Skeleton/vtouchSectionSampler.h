@@ -39,6 +39,14 @@ struct SectionForeground
   }
 };
 
+/// The volume's intensities: value(linear index, x fastest) over a grid of `dims` (what the raw
+/// path's tip rule reads, vtouchTurnedDimTipTrimmer.h).
+struct SectionIntensity
+{
+  std::array<std::int64_t, 3> dims{ 0, 0, 0 };
+  std::function<double(std::uint64_t)> value;
+};
+
 /// Nearest-voxel lookups of the foreground at world points (outside the grid is background).
 class SectionSampler
 {
@@ -75,10 +83,10 @@ public:
   /// The smallest spacing (mm): the unit of every length in voxels.
   double voxel_mm() const { return this->Voxel_mm; }
 
-  bool inside(const Vec3& p) const
+  /// The nearest voxel's index of world point `p`; false when `p` lies outside the grid.
+  bool nearestVoxel(const Vec3& p, std::array<std::int64_t, 3>& idx) const
   {
     const double q[3] = { p.x - this->Origin[0], p.y - this->Origin[1], p.z - this->Origin[2] };
-    std::int64_t idx[3];
     const auto& dims = this->Fg.dims;
     for (int r = 0; r < 3; ++r)
     {
@@ -88,8 +96,19 @@ public:
       {
         return false;
       }
-      idx[r] = static_cast<std::int64_t>(std::lround(c));
+      idx[static_cast<std::size_t>(r)] = static_cast<std::int64_t>(std::lround(c));
     }
+    return true;
+  }
+
+  bool inside(const Vec3& p) const
+  {
+    std::array<std::int64_t, 3> idx;
+    if (!this->nearestVoxel(p, idx))
+    {
+      return false;
+    }
+    const auto& dims = this->Fg.dims;
     return this->Fg.inside(
       static_cast<std::uint64_t>(idx[0] + dims[0] * (idx[1] + dims[1] * idx[2])));
   }

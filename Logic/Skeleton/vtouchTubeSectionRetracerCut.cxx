@@ -3,8 +3,10 @@
 #include "vtouchTubeSectionRetracer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -25,6 +27,51 @@ double trackLength_mm(const Track& tr)
   return l;
 }
 } // namespace
+
+/// A vessel running between vessels of at most its calibre (issue 16 item 2, branch h16p; project
+/// rule): every section of the stretch [j, k) ends within betweenVesselsReach_radii tube radii +
+/// 1 voxel of the path. A vessel of radius r touched by a vessel of radius r' <= r has that
+/// vessel's far wall within r + 2 r' <= 3 r of its axis, on each side it is touched; a plate's
+/// band runs on to the plate's edge. (Two touching vessels make the section a band too, two
+/// arcs on opposite sides, which is why the band test alone cut it: a vessel of radius 4 touched
+/// on both sides over 5 voxels or more.)
+bool PathRetracer::betweenVessels(int j, int k, double tube_voxels) const
+{
+  if (!(s.betweenVesselsReach_radii > 0.0) || !std::isfinite(tube_voxels))
+  {
+    return false;
+  }
+  const double reach_mm = (s.betweenVesselsReach_radii * tube_voxels + 1.0) * voxel;
+  const double step_mm = s.rayStep_voxels * voxel;
+  const int rays = std::max(8, s.rays);
+  constexpr double kPi = 3.14159265358979323846;
+  for (int q = j; q < k; ++q)
+  {
+    const SkeletonPoint& p = path.points[static_cast<std::size_t>(q)];
+    Vec3 t, u, v;
+    SectionSampler::sectionBasis(p.tangent_World, t, u, v);
+    if (!sampler.inside(p.position_World_mm))
+    {
+      return false;
+    }
+    for (int a = 0; a < rays; ++a)
+    {
+      const double angle = 2.0 * kPi * a / rays;
+      const Vec3 dir = u * std::cos(angle) + v * std::sin(angle);
+      const double run_mm =
+        sampler.runLength(p.position_World_mm, dir, reach_mm + step_mm, step_mm);
+      // The ray must end on background inside the grid: where it leaves the volume (a vessel
+      // cut by the volume's border) what lies beyond is unknown.
+      std::array<std::int64_t, 3> end;
+      if (run_mm > reach_mm ||
+          !sampler.nearestVoxel(p.position_World_mm + dir * (run_mm + step_mm), end))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
 
 /// The stretch [j, k), not re-traced. Clutter when its sections are wide (a plate's or a blob's,
 /// not a thin vessel's noisy wall) and either mostly not round (a plate's band) or wider than the
@@ -63,7 +110,8 @@ void PathRetracer::planClutterCut(int j,
     nearJunction = nearJunction || (q >= j - 1 && q <= k);
   }
   if (nearJunction || k - j < s.clutterMinimumPoints || !(2 * notRound >= k - j || wider) ||
-      !(width >= s.clutterMinimumWidth_voxels) || !(length > width + 2.0))
+      !(width >= s.clutterMinimumWidth_voxels) || !(length > width + 2.0) ||
+      (!wider && betweenVessels(j, k, tube)))
   {
     return;
   }

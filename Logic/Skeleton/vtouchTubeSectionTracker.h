@@ -64,12 +64,13 @@
 // 4. Cutting. A stretch that no track crossed is clutter when it has >= 3 points, its sections
 //    are wide (median s >= 1.5 voxels: not a thin vessel's noisy wall), mostly not round (a
 //    plate's band) or wider than the tube it left (s > r + max(1, r / 2): a blob), longer than
-//    its median s + 2 voxels, and it does not reach a junction between two vessels (both paths
-//    have clean runs), where the other vessel's lumen legitimately elongates the sections. It is
-//    removed: the path is split there (the tube's tracks from either side, when they followed the
-//    tube on for more than 2 (r + 1) voxels, stay as the pieces' ends), paths joined to it are
-//    detached (their end becomes free), and pieces left joined to nothing without a clean run of
-//    3 points go.
+//    its median s + 2 voxels, it does not reach a junction between two vessels (both paths
+//    have clean runs), where the other vessel's lumen legitimately elongates the sections, and it
+//    is not a vessel between vessels of at most its calibre (not wider than its tube, every ray
+//    ending on background inside the volume within 3 r + 1 voxel: h16p). It is removed: the path is
+//    split there (the tube's tracks from either side, when they followed the tube on for more than
+//    2 (r + 1) voxels, stay as the pieces' ends), paths joined to it are detached (their end
+//    becomes free), and pieces left joined to nothing without a clean run of 3 points go.
 #pragma once
 
 #include "vtouchCurveGeometry.h"
@@ -108,7 +109,11 @@ public:
     int minimumAnchorPoints = 3;     ///< clean points on an anchor's side for a track from it
     double clutterMinimumWidth_voxels = 1.5; ///< a clutter stretch's median section radius
     int clutterMinimumPoints = 3;            ///< a clutter stretch's sections (a run, not a gap)
-    double smoothingWindow_mm = 0.0;         ///< the filter's SmoothingWindow (skeletonPathWindows)
+    /// A stretch not wider than its tube whose every section stays within this many tube radii
+    /// (+ 1 voxel) of the path is a vessel between vessels of at most its calibre (their far
+    /// walls lie within r + 2 r of its axis), not a plate's band, and is not cut; 0 = off.
+    double betweenVesselsReach_radii = 3.0;
+    double smoothingWindow_mm = 0.0; ///< the filter's SmoothingWindow (skeletonPathWindows)
   };
 
   /// What the tracker found at each point of the result.

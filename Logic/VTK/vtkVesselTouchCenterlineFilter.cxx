@@ -223,6 +223,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   const double coderBegin = this->AutomaticIntensityRange ? 0.5 : 0.0;
   // The raw-angiogram path: the range, the seed's network, tubes only.
   double lower = this->LowerThreshold, upper = this->UpperThreshold;
+  double background = 0.0, backgroundNoise = 0.0; // the range estimator's B and S (automatic)
   double seed[3] = { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] };
   std::shared_ptr<const vtouch::SparseVesselMask> mask;
   std::vector<std::pair<std::string, double>> candidateSeconds;
@@ -258,6 +259,8 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     candidateSeconds = region.stageSeconds;
     this->IntensityRangeUsed[0] = lower = region.lower;
     this->IntensityRangeUsed[1] = upper = region.upper;
+    background = region.background;
+    backgroundNoise = region.backgroundNoise;
     if (!region.ok)
     {
       fail(region.message);
@@ -347,8 +350,14 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
       // a plate's rims, which are bars of their own; the plate around them shows in the image).
       const vtouch::SectionForeground inRange =
         vtouch::rangeForeground(scalars, { dims[0], dims[1], dims[2] }, lower, upper);
-      const vtouch::RawSkeletonRefinement refined =
-        vtouch::RawSkeletonRefinement::apply(skeleton, inRange, geometry, this->SmoothingWindow);
+      // Free ends turned onto one dim noise voxel (the intensities, the range's B and S).
+      const vtouch::TurnedDimTipTrimmer::Evidence tips{ vtouch::volumeIntensity(
+                                                          scalars, { dims[0], dims[1], dims[2] }),
+        lower,
+        background,
+        backgroundNoise };
+      const vtouch::RawSkeletonRefinement refined = vtouch::RawSkeletonRefinement::apply(
+        skeleton, inRange, geometry, this->SmoothingWindow, &tips);
       candidateSeconds.emplace_back("tubeTrack", refined.trackSeconds);
       candidateSeconds.emplace_back("tubePrune", refined.pruneSeconds);
       vtkNew<vtkIntArray> retraced;

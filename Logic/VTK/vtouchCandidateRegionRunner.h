@@ -44,6 +44,8 @@ struct CandidateRegionOutcome
   bool ok = false;
   std::string message; ///< empty when ok
   double lower = 0.0, upper = 0.0;
+  /// The range estimator's background B and its noise sigma S (automatic runs; 0 otherwise).
+  double background = 0.0, backgroundNoise = 0.0;
   bool automatic = true;
   bool binary = false; ///< an automatic run found a two-valued mask: threshold it as before
   std::shared_ptr<const SparseVesselMask> mask;
@@ -139,6 +141,8 @@ CandidateRegionOutcome runCandidateRegion(vtkImageData* image,
   out.automatic = request.automatic;
   out.lower = request.automatic ? r.range.lower : request.lower;
   out.upper = request.automatic ? r.range.upper : request.upper;
+  out.background = request.automatic ? r.range.background : 0.0;
+  out.backgroundNoise = request.automatic ? r.range.backgroundNoise : 0.0;
   out.binary = request.automatic && r.range.binary;
   out.seedIndex = r.seed;
   out.stageSeconds = r.stageSeconds;

@@ -167,6 +167,8 @@ CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* cont
   }
   out.lower = r.region.range.lower;
   out.upper = r.region.range.upper;
+  out.background = r.region.range.background;
+  out.backgroundNoise = r.region.range.backgroundNoise;
   out.stageSeconds = r.region.stageSeconds;
   if (r.region.ok)
   {
