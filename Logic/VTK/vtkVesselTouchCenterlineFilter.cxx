@@ -403,10 +403,20 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   return 1;
 }
 
+bool vtkVesselTouchCenterlineFilter::DistributesExactly() const
+{
+  // The modes RequestDistributed codes with the global SS field (globalSeedCode, globalRootCode):
+  // a seed, or a thresholded / binary mask without one, at full resolution. Vesselness is left
+  // out: its Hessian on a piece is the whole volume's only as far as the margin reaches.
+  return this->DownsampleFactor <= 1 && !this->UseVesselness &&
+         (this->UseSeedPoint || !this->AutomaticIntensityRange);
+}
+
 bool vtkVesselTouchCenterlineFilter::Distributed(int piece, int pieces) const
 {
-  return this->DistributedExtraction &&
-         vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
+  const bool wanted = this->DistributedExtraction == DistributedExtractionOn ||
+    (this->DistributedExtraction == DistributedExtractionAutomatic && this->DistributesExactly());
+  return wanted && vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
 }
 
 int vtkVesselTouchCenterlineFilter::GetGhostMarginVoxels(const double spacing[3]) const

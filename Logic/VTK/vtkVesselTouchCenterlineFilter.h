@@ -108,14 +108,30 @@ public:
   vtkSetMacro(VesselnessThreshold, double);
   vtkGetMacro(VesselnessThreshold, double);
 
-  /// On a parallel pvserver (MPI): 1 (default) = each rank codes its own piece grown by the ghost
-  /// margin, sends its owned points and an overlap band, and rank 0 stitches the pieces (issue 19
-  /// item 2; the memory per rank falls with the ranks; a vessel lying along a piece face is kept
-  /// once); 0 = the first rank codes the whole volume (the single run's result exactly, no memory
-  /// scaling). Not used built in (Docs/CLIENT-SERVER.md, "Distributed extraction").
-  vtkSetMacro(DistributedExtraction, int);
+  /// On a parallel pvserver (MPI), who codes the volume (issue 19 item 2; Docs/CLIENT-SERVER.md,
+  /// "Distributed extraction"). Not used built in.
+  /// - DistributedExtractionOff (0): the first rank codes the whole volume (the single run's result
+  ///   exactly; no memory scaling).
+  /// - DistributedExtractionOn (1): each rank codes its own piece grown by the ghost margin, sends
+  ///   its owned points and an overlap band, and the first rank stitches the pieces (the memory per
+  ///   rank falls with the ranks), in every mode.
+  /// - DistributedExtractionAutomatic (2, the default): On where the distributed run codes with
+  ///   the single run's SS field from the single run's root (a thresholded or binary mask, with or
+  ///   without a seed, and the raw seeded mode, at full resolution; see DistributesExactly), Off
+  ///   elsewhere (the raw mode without a seed, where each rank would estimate its own range; an
+  ///   explicit DownsampleFactor > 1; vesselness), where only the first rank gives the single
+  ///   run's network (project rule: the default never trades the single run's network for memory).
+  enum
+  {
+    DistributedExtractionOff = 0,
+    DistributedExtractionOn = 1,
+    DistributedExtractionAutomatic = 2
+  };
+  vtkSetClampMacro(DistributedExtraction, int, DistributedExtractionOff, DistributedExtractionAutomatic);
   vtkGetMacro(DistributedExtraction, int);
-  vtkBooleanMacro(DistributedExtraction, int);
+  /// Whether the current settings are a mode the distributed run codes with the single run's field
+  /// (what DistributedExtractionAutomatic distributes).
+  bool DistributesExactly() const;
   /// Distributed extraction (pvserver under MPI, issue 19 item 2): the largest vessel radius, mm,
   /// the ghost margin around each rank's piece must cover (vtouch::GhostMarginRule). 0 (default)
   /// = automatic: 10 voxels of the largest spacing. Not used by a one-process run.
@@ -210,7 +226,7 @@ private:
   int VesselnessNumberOfScales = 4;
   double VesselnessThreshold = 0.05;
   double LargestVesselRadius = 0.0;
-  int DistributedExtraction = 0;
+  int DistributedExtraction = DistributedExtractionAutomatic;
   bool QuietErrors = false;
   std::string LastRunKey;
   vtkSmartPointer<vtkPolyData> PrecomputedOutput;
