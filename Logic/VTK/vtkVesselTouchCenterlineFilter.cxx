@@ -95,6 +95,7 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
   const int piece = requestedPiece(outputVector), pieces = requestedPieces(outputVector);
   if (this->Distributed(piece, pieces))
   {
+    this->DistributedTimeline.markRequest();
     double spacing[3] = { 1.0, 1.0, 1.0 };
     if (in->Has(vtkDataObject::SPACING()))
     {
@@ -127,6 +128,7 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (this->Distributed(requestedPiece(outputVector), requestedPieces(outputVector)))
   {
+    this->DistributedTimeline.markDataEntry();
     return this->RequestDistributed(inputVector, output);
   }
   if (output && requestedPiece(outputVector) > 0)
@@ -457,6 +459,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   hooks.ghostMarginVoxels = [this](const double spacing[3])
   { return this->GetGhostMarginVoxels(spacing); };
   hooks.automaticIntensityRange = this->AutomaticIntensityRange;
+  hooks.timeline = this->DistributedTimeline.take();
   // The global SS field (issue 19 item 2): every rank codes its piece with the single run's SS
   // field, computed across the ranks (vtouch::DistributedGlobalField, the coder's hook), instead
   // of from roots of its own: from the seed in the seeded modes, from the single run's automatic

@@ -29,6 +29,8 @@
 #include <string> // for ExtractionMessage
 #ifndef __VTK_WRAP__
 #include <atomic> // for the cancel flag
+
+#include "vtouchRankTimeline.h" // for the distributed run's time stamps
 namespace vtouch
 {
 struct CandidateRegionOutcome; // the distributed raw seeded mode's region (RequestDistributed)
@@ -242,6 +244,8 @@ private:
   /// while ExtractVolume runs on the piece: the global SS field across the ranks, which the
   /// coder codes with (its hook).
   vtouch::DistributedGlobalField* DistributedField = nullptr;
+  /// The distributed run's pipeline stamps on this rank (issue 19 item 4: where the time goes).
+  vtouch::RankTimeline DistributedTimeline;
 #endif
 };
 

@@ -1,5 +1,6 @@
 #include "vtouchDistributedCenterline.h"
 
+#include "vtouchRankTimeline.h"
 #include "vtouchSkeletonClipper.h"
 #include "vtouchSkeletonFragmentCodec.h"
 #include "vtouchSkeletonOverlapResolver.h"
@@ -20,6 +21,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <iterator>
 #include <sstream>
 
 namespace vtouch
@@ -62,22 +65,35 @@ double DistributedCenterline::peakResidentKiB()
 
 namespace
 {
-constexpr int kReportValues = 12;
+// The report's values as they travel: the input extent, then these fields in this order.
+constexpr double PieceReport::*kReportFields[] = { &PieceReport::readerBytes,
+  &PieceReport::peakResident_kiB,
+  &PieceReport::fragments,
+  &PieceReport::rangeLower,
+  &PieceReport::rangeUpper,
+  &PieceReport::extractSeconds,
+  &PieceReport::requestLast_Epoch_s,
+  &PieceReport::dataEntry_Epoch_s,
+  &PieceReport::extractStart_Epoch_s,
+  &PieceReport::gatherEntry_Epoch_s,
+  &PieceReport::maskSeconds,
+  &PieceReport::codeSeconds,
+  &PieceReport::readerSeconds,
+  &PieceReport::readerValueRangeSeconds };
+constexpr int kReportValues = 6 + static_cast<int>(std::size(kReportFields));
 
 std::array<double, kReportValues> encodeReport(const PieceReport& r)
 {
-  return { static_cast<double>(r.inputExtent[0]),
-    static_cast<double>(r.inputExtent[1]),
-    static_cast<double>(r.inputExtent[2]),
-    static_cast<double>(r.inputExtent[3]),
-    static_cast<double>(r.inputExtent[4]),
-    static_cast<double>(r.inputExtent[5]),
-    r.readerBytes,
-    r.peakResident_kiB,
-    r.fragments,
-    r.rangeLower,
-    r.rangeUpper,
-    r.extractSeconds };
+  std::array<double, kReportValues> values{};
+  for (std::size_t i = 0; i < 6; ++i)
+  {
+    values[i] = static_cast<double>(r.inputExtent[i]);
+  }
+  for (std::size_t f = 0; f < std::size(kReportFields); ++f)
+  {
+    values[6 + f] = r.*kReportFields[f];
+  }
+  return values;
 }
 
 PieceReport decodeReport(const double* d)
@@ -87,12 +103,10 @@ PieceReport decodeReport(const double* d)
   {
     r.inputExtent[i] = static_cast<int>(d[i]);
   }
-  r.readerBytes = d[6];
-  r.peakResident_kiB = d[7];
-  r.fragments = d[8];
-  r.rangeLower = d[9];
-  r.rangeUpper = d[10];
-  r.extractSeconds = d[11];
+  for (std::size_t f = 0; f < std::size(kReportFields); ++f)
+  {
+    r.*kReportFields[f] = d[6 + f];
+  }
   return r;
 }
 } // namespace
@@ -109,6 +123,7 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   const auto since = [](Clock::time_point t0)
   { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   const Clock::time_point gatherStart = Clock::now();
+  report.gatherEntry_Epoch_s = epochSeconds();
   const int ranks = controller->GetNumberOfProcesses();
   const int rank = controller->GetLocalProcessId();
   const PieceOwnership ownership(pieceExtents(whole, ranks), whole);
@@ -209,6 +224,58 @@ void addIntValue(vtkFieldData* fd, const char* name, int value)
   a->InsertNextValue(value);
   fd->AddArray(a);
 }
+
+/// `to - from`, 0 when a stamp was not taken (a rank without a piece).
+double between(double from_Epoch_s, double to_Epoch_s)
+{
+  return from_Epoch_s > 0.0 && to_Epoch_s > 0.0 ? to_Epoch_s - from_Epoch_s : 0.0;
+}
+
+/// Where each rank's time went (issue 19, item 4): one value per rank in each array.
+void addBreakdown(vtkFieldData* fd, const std::vector<PieceReport>& pieces)
+{
+  double lastGather_Epoch_s = 0.0;
+  for (const PieceReport& r : pieces)
+  {
+    lastGather_Epoch_s = std::max(lastGather_Epoch_s, r.gatherEntry_Epoch_s);
+  }
+  using Value = std::function<double(const PieceReport&)>;
+  const std::pair<const char*, Value> columns[] = {
+    { "PieceUpstreamSeconds",
+      [](const PieceReport& r) { return between(r.requestLast_Epoch_s, r.dataEntry_Epoch_s); } },
+    { "PieceReaderSeconds", [](const PieceReport& r) { return r.readerSeconds; } },
+    { "PieceReaderValueRangeSeconds",
+      [](const PieceReport& r) { return r.readerValueRangeSeconds; } },
+    { "PieceBeforeExtractSeconds",
+      [](const PieceReport& r) { return between(r.dataEntry_Epoch_s, r.extractStart_Epoch_s); } },
+    { "PieceMaskSeconds", [](const PieceReport& r) { return r.maskSeconds; } },
+    { "PieceCodeSeconds", [](const PieceReport& r) { return r.codeSeconds; } },
+    { "PieceAfterExtractSeconds",
+      [](const PieceReport& r)
+      {
+        return r.extractStart_Epoch_s > 0.0
+                 ? between(r.extractStart_Epoch_s + r.extractSeconds, r.gatherEntry_Epoch_s)
+                 : 0.0;
+      } },
+    { "PieceGatherWaitSeconds",
+      [lastGather_Epoch_s](const PieceReport& r)
+      { return between(r.gatherEntry_Epoch_s, lastGather_Epoch_s); } },
+    // Stamps, not durations (no "Seconds" suffix): the client compares them with its own clock.
+    { "PieceRequestEpoch", [](const PieceReport& r) { return r.requestLast_Epoch_s; } },
+    { "PieceRequestDataEntryEpoch", [](const PieceReport& r) { return r.dataEntry_Epoch_s; } },
+    { "PieceGatherEntryEpoch", [](const PieceReport& r) { return r.gatherEntry_Epoch_s; } },
+  };
+  for (const auto& [name, value] : columns)
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    for (const PieceReport& r : pieces)
+    {
+      a->InsertNextValue(value(r));
+    }
+    fd->AddArray(a);
+  }
+}
 } // namespace
 
 bool DistributedCenterline::addReports(vtkFieldData* fd,
@@ -262,6 +329,7 @@ bool DistributedCenterline::addReports(vtkFieldData* fd,
   fd->AddArray(peak);
   fd->AddArray(fragments);
   fd->AddArray(extractSeconds);
+  addBreakdown(fd, result.pieces);
   for (const auto& [name, seconds] :
     { std::make_pair("DistributedGatherSeconds", result.gatherSeconds),
       std::make_pair("DistributedStitchSeconds", result.stitchSeconds) })

@@ -29,6 +29,16 @@ struct PieceReport
   double rangeLower = 0.0;       ///< the intensity range the rank's run used
   double rangeUpper = 0.0;
   double extractSeconds = 0.0; ///< the rank's own extraction on its grown piece, wall s
+  // Where the rank's time goes (issue 19, item 4). Epoch stamps (vtouch::epochSeconds, 0: not
+  // taken) compare between the ranks and the client on one machine.
+  double requestLast_Epoch_s = 0.0;  ///< the last RequestUpdateExtent; the input updates after
+  double dataEntry_Epoch_s = 0.0;    ///< RequestData's entry
+  double extractStart_Epoch_s = 0.0; ///< the piece's own extraction starts
+  double gatherEntry_Epoch_s = 0.0;  ///< the rank reaches the gather (the first collective after)
+  double maskSeconds = 0.0; ///< of the extraction: the coder's threshold mask (CoderMaskSeconds), s
+  double codeSeconds = 0.0; ///< of the extraction: the coding (CoderCoderAllSeconds), s
+  double readerSeconds = -1.0; ///< the reader's RequestData for this input (-1: not reported), s
+  double readerValueRangeSeconds = -1.0; ///< of which the voxel value range, s
 };
 
 class DistributedCenterline
@@ -72,7 +82,13 @@ public:
   /// The stitch's and the ranks' reports as field data of the stitched output (the arrays
   /// DistributedPieces, GhostMarginVoxels, Stitch* (StitchDuplicatesRemoved,
   /// StitchBandStubsDropped, StitchPointsDropped, StitchStrayPointsDropped among them), Piece*,
-  /// DistributedGatherSeconds, DistributedStitchSeconds, PieceExtractSeconds: one value per rank). Returns whether a rank
+  /// DistributedGatherSeconds, DistributedStitchSeconds, PieceExtractSeconds and the breakdown
+  /// of each rank's time, one value per rank: PieceUpstreamSeconds (the last request to
+  /// RequestData: the input's update), PieceReaderSeconds, PieceReaderValueRangeSeconds,
+  /// PieceBeforeExtractSeconds,
+  /// PieceMaskSeconds, PieceCodeSeconds, PieceAfterExtractSeconds (the extraction's end to the
+  /// gather), PieceGatherWaitSeconds (the gather waiting for the last rank); and the epoch stamps
+  /// PieceRequestEpoch, PieceRequestDataEntryEpoch, PieceGatherEntryEpoch). Returns whether a rank
   /// that found vessels used another intensity range than `rangeUsed` (also
   /// PieceIntensityRangesDiffer).
   static bool addReports(vtkFieldData* fd,

@@ -5,6 +5,7 @@
 #include "vtouchPolyDataToQSkeleton.h"
 
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -19,6 +20,16 @@
 
 namespace vtouch
 {
+
+namespace
+{
+/// The first value of the field-data array `name`, or `otherwise` when there is none.
+double firstValue(vtkFieldData* fd, const char* name, double otherwise)
+{
+  vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
+  return a && a->GetNumberOfTuples() > 0 ? a->GetComponent(0, 0) : otherwise;
+}
+} // namespace
 
 void DistributedRequest::requestGrownPiece(vtkInformation* in,
   int piece,
@@ -58,6 +69,8 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   VoxelExtent6 whole{ 0, -1, 0, -1, 0, -1 };
   double largestSpacing = 1.0;
   std::string pieceMessage;
+  report.requestLast_Epoch_s = hooks.timeline.lastRequest_Epoch_s;
+  report.dataEntry_Epoch_s = hooks.timeline.dataEntry_Epoch_s;
   if (vtkInformation* in = inputVector[0]->GetInformationObject(0))
   {
     in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
@@ -68,10 +81,15 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   }
   if (input)
   {
+    report.extractStart_Epoch_s = epochSeconds();
     const auto extractStart = std::chrono::steady_clock::now();
     hooks.extractPiece(DistributedCenterline::pieceFromIndexZero(input), own);
     report.extractSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - extractStart).count();
+    // Two of the coder's sequential stages (vtouch::VoxelCodingSkeletonFilter): the threshold
+    // mask of the grown piece, and the coding itself.
+    report.maskSeconds = firstValue(own->GetFieldData(), "CoderMaskSeconds", 0.0);
+    report.codeSeconds = firstValue(own->GetFieldData(), "CoderCoderAllSeconds", 0.0);
     if (hooks.afterExtract)
     {
       hooks.afterExtract(); // collective
@@ -92,9 +110,16 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
     frame = DistributedCenterline::indexFrame(input);
     largestSpacing = std::max({ frame.spacing_mm[0], frame.spacing_mm[1], frame.spacing_mm[2] });
     input->GetExtent(report.inputExtent.data());
-    if (vtkDataArray* bytes = input->GetFieldData()->GetArray("ReaderVoxelBytesRead"))
+    vtkFieldData* read = input->GetFieldData();
+    report.readerBytes = firstValue(read, "ReaderVoxelBytesRead", report.readerBytes);
+    report.readerSeconds = firstValue(read, "ReaderSeconds", report.readerSeconds);
+    report.readerValueRangeSeconds =
+      firstValue(read, "ReaderValueRangeSeconds", report.readerValueRangeSeconds);
+    if (report.readerSeconds >= 0.0 && input->GetUpdateTime() <= hooks.timeline.lastRequest_MTime)
     {
-      report.readerBytes = bytes->GetComponent(0, 0);
+      // The reader did not run for this request (the piece it held was the one asked for): its
+      // field data tells of an earlier run.
+      report.readerSeconds = report.readerValueRangeSeconds = 0.0;
     }
   }
   else if (hooks.afterExtract)
@@ -155,6 +180,12 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   {
     outcome.warnings.push_back("VesselCenterline (distributed): " + note);
   }
+  // The first rank leaves RequestData now (the last rank to: it stitched); the client's wall
+  // time after this stamp is the executive's end of the pass and ParaView's data information.
+  vtkNew<vtkDoubleArray> exitStamp;
+  exitStamp->SetName("DistributedRequestDataExitEpoch");
+  exitStamp->InsertNextValue(epochSeconds());
+  fd->AddArray(exitStamp);
   return outcome;
 }
 

@@ -6,6 +6,7 @@
 
 #include "vtouchDistributedCenterline.h" // for VoxelExtent6
 #include "vtouchQSkeleton.h"
+#include "vtouchRankTimeline.h"
 
 #include <functional>
 #include <string>
@@ -44,6 +45,9 @@ public:
     /// The ghost margin for a spacing (GhostMarginRule with the filter's parameters), voxels.
     std::function<int(const double spacing[3])> ghostMarginVoxels;
     bool automaticIntensityRange = true;
+    /// This rank's pipeline stamps of the run (the request, RequestData's entry), reported with
+    /// the rest of its breakdown (PieceReport).
+    RankTimeline timeline;
     /// Optional, collective: runs on every rank before its piece is coded, with or without an
     /// input (the raw seeded mode's range and region across the ranks).
     std::function<void(vtkImageData* input, const VoxelExtent6& whole)> beforePiece;

@@ -17,7 +17,18 @@ sides, and measures what the user waits for, in order:
   stage_<name>_s    every "<Name>Seconds" array of the filter's field data: the filter's and the
                     coder's stage times on rank 0 (Coder<Stage>Seconds), and distributed: each
                     rank's own extraction (PieceExtractSeconds, the slowest rank and
-                    stage_pieceExtract_s.rank<r>), the gather and the stitch on rank 0;
+                    stage_pieceExtract_s.rank<r>), the gather and the stitch on rank 0, and
+                    where each rank's time goes (Docs/SCALING.md, "Where the distributed
+                    filter's time goes"): stage_pieceUpstream_s (the filter's last request to
+                    its RequestData: the reader re-executing for the grown piece),
+                    stage_pieceReader_s and stage_pieceReaderValueRange_s (the reader's own
+                    RequestData, 0 when it did not run), stage_pieceBeforeExtract_s,
+                    stage_pieceMask_s, stage_pieceCode_s (of the extraction),
+                    stage_pieceAfterExtract_s, stage_pieceGatherWait_s (waiting at the gather
+                    for the last rank);
+  centerline_before_request_s, centerline_request_to_exit_s, centerline_after_request_data_s
+                    distributed: centerline_s cut by the ranks' epoch stamps (the earliest rank's
+                    last request before its RequestData, the first rank leaving RequestData);
   deliver_s         binding the client's session: the skeleton appended on rank 0 and moved to the
                     client (vesseltouch/delivery.py);
   bytes_to_client   the delivered skeleton, marshalled as ParaView sends it
@@ -77,6 +88,25 @@ def haptic_phase(session, seconds, render_view=None):
     return out, frames
 
 
+def timeline(fd, start_epoch, end_epoch, result):
+    """The distributed run's epoch stamps against the client's: the time before the request
+    reached the ranks (the proxy's messages, the executive's information pass) and after the
+    first rank left RequestData (the executive's end of the pass, ParaView's data information,
+    the answer to the client)."""
+    def values(name):
+        a = fd.GetArray(name)
+        return [] if a is None else [float(a.GetComponent(i, 0))
+                                     for i in range(a.GetNumberOfTuples())]
+    requests = [v for v in values("PieceRequestEpoch") if v > 0.0]
+    exits = values("DistributedRequestDataExitEpoch")
+    if requests:
+        result["centerline_before_request_s"] = min(requests) - start_epoch
+    if exits:
+        result["centerline_after_request_data_s"] = end_epoch - exits[0]
+    if requests and exits:
+        result["centerline_request_to_exit_s"] = exits[0] - min(requests)
+
+
 def show_mip(vesseltouch, reader, args, result):
     """A render view showing the volume as a MIP, rendered and composited on the server (the image
     sent to the client); the first frame's time in result["first_frame_s"]."""
@@ -121,7 +151,9 @@ def measure(args, server, result):
                                          LowerThreshold=args.lower, UpperThreshold=args.upper,
                                          DistributedExtraction=1 if args.distributed else 0)
     t = time.perf_counter()
+    start_epoch = time.time()  # the ranks' stamps are system_clock epochs: one machine's clock
     centerline.UpdatePipeline()
+    end_epoch = time.time()
     result["centerline_s"] = time.perf_counter() - t
 
     session = vesseltouch.logic()
@@ -147,6 +179,7 @@ def measure(args, server, result):
     read = fd.GetArray("PieceReaderVoxelBytesRead")
     for rank in range(read.GetNumberOfTuples() if read is not None else 0):
         result["piece_reader_bytes_read.rank%d" % rank] = float(read.GetComponent(rank, 0))
+    timeline(fd, start_epoch, end_epoch, result)
     message = fd.GetAbstractArray("ExtractionMessage")
     if message is not None and message.GetNumberOfValues() and message.GetValue(0):
         result["extraction_message"] = message.GetValue(0)

@@ -16,7 +16,10 @@ memory is the measure (Docs/SCALING.md).
 
 Keys (flat): scaling.<X>x<Y>x<Z>.<run>.<measure> with every measure scaling_client.py writes
 (read_s, centerline_s, stage_<stage>_s, deliver_s, bytes_to_client, peak_rss_mib_max,
-peak_rss_mib.rank<r>, haptic.{idle,render}.period_error_p99_us, ...), plus
+peak_rss_mib.rank<r>, haptic.{idle,render}.period_error_p99_us, and for the distributed runs
+where centerline_s goes: centerline_before_request_s, centerline_request_to_exit_s,
+centerline_after_request_data_s, stage_pieceUpstream_s, stage_pieceReader_s,
+stage_pieceGatherWait_s, ... per rank as .rank<r>; Docs/SCALING.md), plus
 scaling.<size>.memory_ratio_<run> = peak_rss_mib_max of the run / of r1, and scaling.largest.*
 copies of the largest size's keys (the quick and full runs then share names).
 """
@@ -131,6 +134,18 @@ def run(build, quick, tmp, log):
                    data["bytes_to_client"],
                    data["haptic.idle.period_error_p99_us"],
                    data["haptic.render.period_error_p99_us"], time.time() - t))
+            if distributed:
+                log("scaling: %s %s: centerline %.2f s = before the request %.2f + request to "
+                    "rank 0's exit %.2f + after %.2f; slowest rank: upstream (reader %.2f) %.2f, "
+                    "extraction %.2f, gather wait %.2f"
+                    % (tag, run_name, data["centerline_s"],
+                       data.get("centerline_before_request_s", math.nan),
+                       data.get("centerline_request_to_exit_s", math.nan),
+                       data.get("centerline_after_request_data_s", math.nan),
+                       data.get("stage_pieceReader_s", math.nan),
+                       data.get("stage_pieceUpstream_s", math.nan),
+                       data.get("stage_pieceExtract_s", math.nan),
+                       data.get("stage_pieceGatherWait_s", math.nan)))
             raw["%s.%s" % (tag, run_name)] = data
             for key, value in data.items():
                 if isinstance(value, (int, float)) and not isinstance(value, bool):

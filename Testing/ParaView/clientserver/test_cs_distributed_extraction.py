@@ -37,6 +37,7 @@ import os
 import shutil
 import sys
 import tempfile
+import time
 
 import numpy as np
 
@@ -143,12 +144,58 @@ def check_pieces(name, data):
               % (name, rank, bytes_read, 4 * voxels, 4 * N ** 3))
 
 
+def check_breakdown(name, data, start_epoch, end_epoch):
+    """Where each rank's time went (issue 19 item 4): the reader ran for the grown piece inside
+    the filter's request (the volume was not updated before), the stages add up within the
+    extraction, the last rank to the gather waited for no one, and the epoch stamps are in
+    order, within the client's own stamps around UpdatePipeline (one machine, one clock)."""
+    def values(array):
+        got = field(data, array)
+        return None if got is None else [t[0] for t in got]
+    v = {a: values(a) for a in (
+        "PieceUpstreamSeconds", "PieceReaderSeconds", "PieceReaderValueRangeSeconds",
+        "PieceBeforeExtractSeconds", "PieceMaskSeconds", "PieceCodeSeconds",
+        "PieceExtractSeconds", "PieceAfterExtractSeconds", "PieceGatherWaitSeconds",
+        "PieceRequestEpoch", "PieceRequestDataEntryEpoch", "PieceGatherEntryEpoch",
+        "DistributedRequestDataExitEpoch")}
+    missing = [a for a, got in v.items() if got is None]
+    check(not missing, "%s: the time breakdown is reported (missing %s)" % (name, missing))
+    if missing:
+        return
+    exit_epoch = v["DistributedRequestDataExitEpoch"][0]
+    for r in range(2):
+        def at(a):
+            return v[a][r]
+        check(0.0 < at("PieceReaderSeconds") <= at("PieceUpstreamSeconds") and
+              0.0 <= at("PieceReaderValueRangeSeconds") <= at("PieceReaderSeconds"),
+              "%s: rank %d's reader ran for the grown piece within the input's update (reader "
+              "%.4f s, its value range %.4f s, upstream %.4f s)"
+              % (name, r, at("PieceReaderSeconds"), at("PieceReaderValueRangeSeconds"),
+                 at("PieceUpstreamSeconds")))
+        check(0.0 < at("PieceMaskSeconds") + at("PieceCodeSeconds") <= at("PieceExtractSeconds")
+              and at("PieceBeforeExtractSeconds") >= 0.0 and at("PieceAfterExtractSeconds") >= 0.0,
+              "%s: rank %d's mask %.4f s and coding %.4f s lie within its extraction %.4f s"
+              % (name, r, at("PieceMaskSeconds"), at("PieceCodeSeconds"),
+                 at("PieceExtractSeconds")))
+        stamps = [start_epoch, at("PieceRequestEpoch"), at("PieceRequestDataEntryEpoch"),
+                  at("PieceGatherEntryEpoch"), exit_epoch, end_epoch]
+        check(stamps == sorted(stamps),
+              "%s: rank %d's stamps in order (client start, request, RequestData, gather, rank "
+              "0's exit, client end): %s" % (name, r, ["%.4f" % (t - start_epoch) for t in stamps]))
+    waits = v["PieceGatherWaitSeconds"]
+    check(min(waits) == 0.0 and all(w >= 0.0 for w in waits),
+          "%s: the last rank to reach the gather waited for no one (%s)" % (name, waits))
+
+
 def distributed(references):
     for name, (path, reference, _) in references.items():
         volume = simple.OpenDataFile(path)
         centerline = simple.VesselCenterline(Input=volume, **FILTER)
+        start_epoch = time.time()
         centerline.UpdatePipeline()
+        end_epoch = time.time()
         data = sm.Fetch(centerline)
+        check_breakdown(name, data, start_epoch, end_epoch)
         got = graph(data, 1.0)
         print("%s on 2 ranks: %d paths, %s; stitch: %s joined, %s unmatched, %s loops closed"
               % (name, got["paths"], topology(got), field(data, "StitchCutEndsJoined"),
