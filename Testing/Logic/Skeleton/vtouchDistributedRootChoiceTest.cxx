@@ -6,6 +6,7 @@
 // field from it on every voxel it holds; bad input and round caps give every rank the same
 // message. And the far-voxel rule the single run now shares (SeedCodeStage::farVoxel).
 #include "vtouchDistributedRootChoice.h"
+#include "vtouchDistributedTestScenes.h"
 #include "vtouchInProcessCollectives.h"
 #include "vtouchPieceGrid.h"
 #include "vtouchSkeletonStageTestSupport.h"
@@ -26,64 +27,8 @@ using skeleton::test::Dims;
 using test::InProcessWorld;
 using test::layouts;
 using test::pieceMask;
+using test::randomTree; // the trees this test was measured on (vtouchDistributedTestScenes)
 using Index = std::array<std::int64_t, 3>;
-
-struct Capsule
-{
-  Point_mm a, b; // voxel indices
-  double radius; // voxels
-};
-
-/// A random tree of capsules (a trunk of `trunkRadius` voxels, 2-3 levels of thinner branches)
-/// and a small blob near the volume's first corner (apart, or touching: either way); `seed`
-/// makes it.
-SparseVesselMask randomTree(const Dims& d, unsigned seed, double trunkRadius)
-{
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const auto inside = [&](double margin)
-  {
-    return Point_mm{ margin + unit(random) * (static_cast<double>(d[0]) - 2 * margin),
-      margin + unit(random) * (static_cast<double>(d[1]) - 2 * margin),
-      margin + unit(random) * (static_cast<double>(d[2]) - 2 * margin) };
-  };
-  std::vector<Capsule> tree{
-    { inside(trunkRadius + 2), inside(trunkRadius + 2), trunkRadius * (1.0 + 0.3 * unit(random)) }
-  };
-  for (int level = 0; level < 3; ++level)
-  {
-    const std::size_t parents = tree.size();
-    for (std::size_t p = 0; p < parents; ++p)
-    {
-      if (unit(random) < 0.3)
-      {
-        continue;
-      }
-      const Capsule c = tree[p];
-      const double t = 0.2 + 0.6 * unit(random);
-      const Point_mm from{ c.a[0] + t * (c.b[0] - c.a[0]),
-        c.a[1] + t * (c.b[1] - c.a[1]),
-        c.a[2] + t * (c.b[2] - c.a[2]) };
-      const double r = std::max(1.0, c.radius * (0.6 + 0.3 * unit(random)));
-      tree.push_back({ from, inside(r + 2), r });
-    }
-  }
-  tree.push_back({ { 2, 2, 2 }, { 2, 2, 2 }, 1.2 });
-  return skeleton::test::makeMask(d,
-    [&](const Point_mm& p)
-    {
-      for (const Capsule& c : tree)
-      {
-        const bool point = c.a == c.b;
-        if ((point ? skeleton::distance(p, c.a) : skeleton::test::distanceToSegment(p, c.a, c.b)) <=
-            c.radius)
-        {
-          return true;
-        }
-      }
-      return false;
-    });
-}
 
 /// The single run: VoxelCoder without a seed, its components' final roots (the thickest end's
 /// when moved, else the extremity), first roots (the extremity, sorted) and moves, and the SS
@@ -228,7 +173,7 @@ Seen expectTheSingleRuns(const std::vector<RankResult>& results, const SingleRun
   return seen;
 }
 
-const std::array<std::array<int, 3>, 3> kSplits{ { { 1, 1, 2 }, { 1, 2, 2 }, { 2, 2, 2 } } };
+const auto& kSplits = test::kSplitsIn2And4And8;
 
 TEST(DistributedRootChoice, EveryRankGetsTheSingleRunsRootOnSmallRandomTreesIn2And4And8Pieces)
 {
