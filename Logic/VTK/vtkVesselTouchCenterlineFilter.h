@@ -112,12 +112,14 @@ public:
 
   /// On a parallel pvserver (MPI), who codes the volume (issue 19 item 2; Docs/CLIENT-SERVER.md,
   /// "Distributed extraction"). Not used built in.
-  /// - DistributedExtractionOff (0): the first rank codes the whole volume (the single run's result
-  ///   exactly; no memory scaling).
+  /// - DistributedExtractionOff (0, the default): the first rank codes the whole volume (the single
+  ///   run's result exactly; no memory scaling). Automatic is not the default yet: on the 512 x 512
+  ///   x 256 scaling tree (explored on blocks) 2 ranks gave 32 / 55 / 14 against the single run's
+  ///   31 / 53 / 12 (Docs/CLIENT-SERVER.md, "Automatic").
   /// - DistributedExtractionOn (1): each rank codes its own piece grown by the ghost margin, sends
   ///   its owned points and an overlap band, and the first rank stitches the pieces (the memory per
   ///   rank falls with the ranks), in every mode.
-  /// - DistributedExtractionAutomatic (2, the default): On where the distributed run codes with
+  /// - DistributedExtractionAutomatic (2): On where the distributed run codes with
   ///   the single run's SS field from the single run's root (a thresholded or binary mask, with or
   ///   without a seed, and the raw seeded mode, at full resolution; see DistributesExactly), Off
   ///   elsewhere (the raw mode without a seed, where each rank would estimate its own range; an
@@ -228,7 +230,7 @@ private:
   int VesselnessNumberOfScales = 4;
   double VesselnessThreshold = 0.05;
   double LargestVesselRadius = 0.0;
-  int DistributedExtraction = DistributedExtractionAutomatic;
+  int DistributedExtraction = DistributedExtractionOff;
   bool QuietErrors = false;
   std::string LastRunKey;
   vtkSmartPointer<vtkPolyData> PrecomputedOutput;
