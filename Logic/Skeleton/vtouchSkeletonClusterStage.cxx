@@ -5,6 +5,7 @@
 #include "vtouchSkeletonThickerEnd.h"
 
 #include <algorithm>
+#include <numeric>
 
 namespace vtouch
 {
@@ -105,8 +106,16 @@ void ClusterStage::build()
         },
         grid.kHalf);
     });
-  // The roots become the clusters, numbered in SS order (the order of the tips' tie-breaks).
+  // The roots become the clusters, numbered in the key order: the SS of the set's root (its
+  // smallest voxel), then that voxel's index (clusterKeyOrder). The number breaks the ties of
+  // the tips' order and sets the order in which LoopStage visits the clusters. Project rule
+  // (issue 19 item 2): the propagation's queue leaves the voxels of one bucket in an order that
+  // depends on the whole volume, so a distributed rank, which codes its piece with the single
+  // run's field (its voxels in SS order, ties by index), numbered its clusters otherwise and
+  // traced tied tips in another order (the 512 x 512 x 256 scaling tree on 2 ranks: an extra
+  // loop, Docs/CLIENT-SERVER.md "One cluster order").
   clusters.clear();
+  std::vector<std::uint32_t> setRoots;
   visited = 0;
   for (std::uint32_t lin : codes.order)
   {
@@ -117,11 +126,24 @@ void ClusterStage::build()
     const std::uint32_t r = grid.mask.rank(lin);
     if (aux[r] == r)
     {
-      aux[r] = kLabelled | static_cast<std::uint32_t>(clusters.size());
-      clusters.emplace_back();
-      clusters.back().band = band(r);
-      clusters.back().firstVoxel = lin; // the set's root: its smallest rank
+      setRoots.push_back(lin);
     }
+  }
+  std::sort(setRoots.begin(),
+    setRoots.end(),
+    [&](std::uint32_t a, std::uint32_t b)
+    {
+      const float sa = ss[grid.mask.rank(a)], sb = ss[grid.mask.rank(b)];
+      return sa != sb ? sa < sb : a < b;
+    });
+  clusters.reserve(setRoots.size());
+  for (std::uint32_t lin : setRoots)
+  {
+    const std::uint32_t r = grid.mask.rank(lin);
+    aux[r] = kLabelled | static_cast<std::uint32_t>(clusters.size());
+    clusters.emplace_back();
+    clusters.back().band = band(r);
+    clusters.back().firstVoxel = lin; // the set's root: its smallest rank
   }
   // Label of each voxel (its set's cluster) and the cluster sums.
   const auto resolve = [&](std::uint32_t lin, std::uint32_t r)
@@ -148,9 +170,10 @@ void ClusterStage::build()
       c.sum[a] += static_cast<double>(x[a]) * grid.sp[a];
       c.indexSum[a] += x[a];
     }
-    // Ties of BS go to the lower SS code, whatever the visiting order.
+    // Ties of BS go to the lower SS code, then to the smaller index, whatever the visiting order.
+    const float bestSs = c.count == 1 ? 0.0F : ss[grid.mask.rank(c.bestVoxel)];
     if (c.count == 1 || bs[r] > c.maxBs ||
-        (bs[r] == c.maxBs && ss[r] < ss[grid.mask.rank(c.bestVoxel)]))
+        (bs[r] == c.maxBs && (ss[r] < bestSs || (ss[r] == bestSs && lin < c.bestVoxel))))
     {
       c.maxBs = bs[r];
       c.bestVoxel = lin;
@@ -207,8 +230,10 @@ void ClusterStage::build()
 std::optional<std::uint32_t> ClusterStage::thickerRoot() const
 {
   const std::vector<Cluster>& clusters = graph.clusters;
-  const std::optional<std::uint32_t> end =
-    thickerEnd(clusters, clusterKeyOrder(clusters, codes.ss, grid.mask));
+  // The clusters are numbered in the key order (build()): each one's position is its number.
+  std::vector<std::uint32_t> position(clusters.size());
+  std::iota(position.begin(), position.end(), 0U);
+  const std::optional<std::uint32_t> end = thickerEnd(clusters, position);
   if (!end)
   {
     return std::nullopt;
@@ -225,23 +250,8 @@ std::optional<std::uint32_t> ClusterStage::thickerRoot() const
   {
     return static_cast<std::uint32_t>(lin);
   }
-  // Else its voxel of largest BS, ties to the lower SS, then to the smaller index (c.bestVoxel
-  // leaves the last tie to the visiting order, which a distributed run does not reproduce; the
-  // tracer keeps that one, so that its outputs do not change). Rare: a scan of the component.
-  std::uint32_t best = c.bestVoxel;
-  const float* const ss = codes.ss.data();
-  const float* const bs = codes.bs.data();
-  for (const std::uint32_t u : codes.order)
-  {
-    const std::uint32_t r = grid.mask.rank(u);
-    const std::uint32_t b = grid.mask.rank(best);
-    if (graph.clusterOfRank(r) == *end &&
-        (bs[r] > bs[b] || (bs[r] == bs[b] && (ss[r] < ss[b] || (ss[r] == ss[b] && u < best)))))
-    {
-      best = u;
-    }
-  }
-  return best;
+  // Else its voxel of largest BS, ties to the lower SS, then to the smaller index (bestVoxel).
+  return c.bestVoxel;
 }
 
 std::uint32_t ClusterStage::tipStart(const VoxelGrid& grid, const Cluster& c)
