@@ -313,6 +313,38 @@ TEST(DistributedRawUnseeded, VolumeWithoutVesselsGivesEveryRankTheSingleRunsMess
   }
 }
 
+TEST(DistributedRawUnseeded, BinaryMaskIsThresholdedAtItsMidpointOnEveryRank)
+{
+  // A two-valued volume (0 and 255): the combined scan gives the binary range, the region is
+  // the threshold, as drawn (no tube cut), on every held voxel of every rank.
+  const std::array<std::int64_t, 3> dims{ 30, 26, 40 };
+  Volume mask{ dims, std::vector<float>(30U * 26U * 40U, 0.0F) };
+  for (std::int64_t k = 2; k < 38; ++k)
+    for (std::int64_t j = 10; j < 14; ++j)
+      for (std::int64_t i = 12 + k / 4; i < 16 + k / 4; ++i)
+      {
+        mask.voxels[static_cast<std::size_t>(i + 30 * (j + 26 * k))] = 255.0F;
+      }
+  const VesselCandidateRegion::Result single =
+    VesselCandidateRegion::extract(mask.view(), VesselCandidateRegion::Settings{});
+  ASSERT_TRUE(single.ok) << single.message;
+  ASSERT_TRUE(single.range.binary);
+  for (const std::array<int, 3>& counts : test::kSplitsIn2And4And8)
+  {
+    std::vector<RankRegion> ranks = unseeded(mask, counts, 4);
+    compare(ranks, mask, single.mask);
+    for (const RankRegion& r : ranks)
+    {
+      ASSERT_TRUE(r.ok) << r.message;
+      EXPECT_TRUE(r.range.binary);
+      EXPECT_EQ(r.range.lower, 127.5);
+      EXPECT_EQ(r.ownedDiffer, 0);
+      EXPECT_EQ(r.heldNotOwners, 0);
+      EXPECT_EQ(r.fromOwners, 0U) << "a threshold is every rank's own decision";
+    }
+  }
+}
+
 TEST(DistributedRawUnseeded, RankWithAnEmptyPieceJoinsEveryCollective)
 {
   // Three ranks, the third holding and owning nothing (more ranks than the volume splits
