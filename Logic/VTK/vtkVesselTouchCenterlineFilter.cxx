@@ -244,7 +244,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     vtouch::CandidateRegionOutcome region;
     try
     {
-      // Distributed raw seeded mode: the region the ranks computed together (the hook).
+      // Distributed raw modes: the region the ranks computed together (the hook).
       region = this->DistributedRegion ? *this->DistributedRegion
                                        : vtouch::runCandidateRegion(input, scalars, request);
     }
