@@ -1,8 +1,10 @@
-// VesselCandidateRegion's seeded run (one click on a raw angiogram: the range from the seed's
-// neighbourhood, the network grown from the seed, tubes only) on a distributed volume (issue 19
-// item 2, issue 16 item 1). Each rank holds its piece grown by the ghost margin; every rank calls
-// extract() (a collective) and takes the same branch: the same range, the same verdicts, the same
-// message. Its result is the region on the rank's held piece, for the voxel coder there.
+// VesselCandidateRegion's run on a distributed volume (issue 19 item 2, issue 16 item 1), both
+// ways of the raw path: seeded (one click on a raw angiogram: the range from the seed's
+// neighbourhood, the network grown from the seed, tubes only) and without a seed (the range from
+// the whole volume, every voxel in it, tubes only). Each rank holds its piece grown by the ghost
+// margin; every rank calls extract() (a collective) and takes the same branch: the same range,
+// the same verdicts, the same message. Its result is the region on the rank's held piece, for
+// the voxel coder there.
 //
 // Each step of VesselCandidateRegion::extract, and how it is made the single run's
 // (Docs/CLIENT-SERVER.md, "The raw seeded mode, distributed"):
@@ -24,11 +26,22 @@
 //     exists: summed over the ranks (global);
 //  9. the seed's kept voxel: on the seed's rank, sent to all (global verdict);
 // 10. the seed's component of the kept voxels: DistributedRegionGrowth again (global).
+// Without a seed (Settings::useSeed off; Docs/CLIENT-SERVER.md, "The raw mode without a seed,
+// distributed"), steps 2, 3 and 9-10 are replaced:
+//  2. the range from the whole volume: DistributedVolumeRange (fromVolume's sample, gathered;
+//     exactly the single run's);
+//  3. every voxel in the range (SeededRegionGrower::threshold per piece: a voxel's own value
+//     decides it, exact on every held voxel); no dim strands to prune (the single run has none);
+//  9. (after 5-8, with the unseeded message) the held voxels a rank does not own take their
+//     owners' decision (HeldRegionFromOwners): the ranks' masks are parts of one whole mask, as
+//     the automatic roots across the ranks need.
 // Cancel is not offered here: a rank stopping alone would leave the others waiting.
 #pragma once
 
 #include "vtouchDimStrandPruner.h"
 #include "vtouchDistributedRegionGrowth.h"
+#include "vtouchDistributedVolumeRange.h"
+#include "vtouchHeldRegionFromOwners.h"
 #include "vtouchIntensityRangeEstimator.h"
 #include "vtouchRegionDepth.h"
 #include "vtouchRestrictedTubularity.h"
@@ -67,10 +80,12 @@ public:
     int growthRounds = 0;             ///< the growth's rounds (the same on every rank)
     int componentRounds = 0;          ///< the seed component's rounds after the neck cut
     std::uint64_t reportedVoxels = 0; ///< voxels this rank sent, both growths
+    /// Without a seed: this rank's held voxels whose decision its owner's changed (step 9).
+    std::uint64_t heldVoxelsFromOwners = 0;
   };
 
   /// `piece` is this rank's held box of the volume (layout.mine()), `seed` the seed's voxel in
-  /// the whole volume (may be outside it).
+  /// the whole volume (may be outside it; ignored when `s.useSeed` is off: the unseeded run).
   template<typename T>
   static Result extract(const VolumeView<T>& piece,
     const PieceLayout& layout,
@@ -93,6 +108,18 @@ private:
     return text;
   }
   static IntensityRangeEstimator::Scan combine(const std::vector<std::vector<double>>& scans);
+  /// The unseeded run's last step: the held voxels from their owners (HeldRegionFromOwners),
+  /// every kept voxel the region (no seed, no component).
+  static void finishUnseeded(Result& out,
+    SparseVesselMask& kept,
+    const PieceLayout& layout,
+    RankCollectives& collectives)
+  {
+    out.heldVoxelsFromOwners = HeldRegionFromOwners::adopt(kept, layout, collectives);
+    out.region.mask = std::move(kept);
+    out.region.seed = { -1, -1, -1 };
+    out.region.ok = true;
+  }
 };
 
 inline IntensityRangeEstimator::Scan DistributedCandidateRegion::combine(
@@ -155,79 +182,90 @@ DistributedCandidateRegion::Result DistributedCandidateRegion::extract(const Vol
       local.haveSecond ? 1.0 : 0.0 };
   }
   const IntensityRangeEstimator::Scan scan = combine(collectives.allGather(mine));
-  // 2. The range on the seed's rank; every rank gets it with the verdict.
-  const int owner = layout.ownerOf(seed);
-  if (owner < 0)
+  // 2. The range: on the seed's rank, every rank getting it with the verdict; without a seed
+  // from the whole volume's sample, on every rank.
+  int owner = -1;
+  bool seedRank = false;
+  std::array<std::int64_t, 3> qWhole{ -1, -1, -1 };
+  if (!s.useSeed)
   {
-    r.message = IntensityRangeEstimator::outsideMessage();
-    return out;
+    r.range = DistributedVolumeRange::estimate(piece, layout, scan, collectives);
   }
-  const bool seedRank = owner == layout.rank;
-  std::vector<double> sent;
-  if (seedRank)
+  else
   {
-    const std::array<std::int64_t, 3> local = layout.toLocal(seed);
-    IntensityRange range;
-    // The seed's cube must be inside this piece (or stop at the volume's faces).
-    const int c = IntensityRangeParameters{}.neighbourhoodHalfSize_voxels;
-    // (The cube as the single run clamps it to the volume, inside the held box.)
-    bool fits = true;
-    const VoxelBox& held = layout.mine();
-    for (std::size_t a = 0; a < 3; ++a)
+    owner = layout.ownerOf(seed);
+    if (owner < 0)
     {
-      fits = fits && std::max<std::int64_t>(0, seed[a] - c) >= held.lo[a] &&
-             std::min<std::int64_t>(layout.wholeDims[a] - 1, seed[a] + c) <= held.hi[a];
+      r.message = IntensityRangeEstimator::outsideMessage();
+      return out;
     }
-    if (!fits)
+    seedRank = owner == layout.rank;
+    std::vector<double> sent;
+    if (seedRank)
     {
-      range.message = "VesselCenterline (distributed): the ghost margin is narrower than the "
-                      "seed's neighbourhood (" +
-                      std::to_string(c) + " voxels); extract on one rank.";
-    }
-    else
-    {
-      range = IntensityRangeEstimator::fromSeedScanned(piece, local, scan);
-    }
-    const auto& q = range.seedIndex;
-    const std::array<std::int64_t, 3> qWhole = range.ok ? layout.toWhole(q) : seed;
-    // The seed verdict (VesselCandidateRegion: the grower's start must be in the range).
-    std::string message = range.message;
-    if (range.ok)
-    {
-      const double value = piece.at(q[0], q[1], q[2]);
-      if (!(value >= range.lower && value <= range.upper))
+      const std::array<std::int64_t, 3> local = layout.toLocal(seed);
+      IntensityRange range;
+      // The seed's cube must be inside this piece (or stop at the volume's faces).
+      const int c = IntensityRangeParameters{}.neighbourhoodHalfSize_voxels;
+      // (The cube as the single run clamps it to the volume, inside the held box.)
+      bool fits = true;
+      const VoxelBox& held = layout.mine();
+      for (std::size_t a = 0; a < 3; ++a)
       {
-        message =
-          IntensityRangeEstimator::backgroundMessage(piece.at(local[0], local[1], local[2]));
+        fits = fits && std::max<std::int64_t>(0, seed[a] - c) >= held.lo[a] &&
+               std::min<std::int64_t>(layout.wholeDims[a] - 1, seed[a] + c) <= held.hi[a];
       }
+      if (!fits)
+      {
+        range.message = "VesselCenterline (distributed): the ghost margin is narrower than the "
+                        "seed's neighbourhood (" +
+                        std::to_string(c) + " voxels); extract on one rank.";
+      }
+      else
+      {
+        range = IntensityRangeEstimator::fromSeedScanned(piece, local, scan);
+      }
+      const auto& q = range.seedIndex;
+      const std::array<std::int64_t, 3> start = range.ok ? layout.toWhole(q) : seed;
+      // The seed verdict (VesselCandidateRegion: the grower's start must be in the range).
+      std::string message = range.message;
+      if (range.ok)
+      {
+        const double value = piece.at(q[0], q[1], q[2]);
+        if (!(value >= range.lower && value <= range.upper))
+        {
+          message =
+            IntensityRangeEstimator::backgroundMessage(piece.at(local[0], local[1], local[2]));
+        }
+      }
+      sent = { range.ok && message.empty() ? 1.0 : 0.0,
+        range.binary ? 1.0 : 0.0,
+        range.lower,
+        range.upper,
+        range.weakLower,
+        range.background,
+        range.backgroundNoise,
+        range.vessel,
+        static_cast<double>(start[0]),
+        static_cast<double>(start[1]),
+        static_cast<double>(start[2]) };
+      const std::vector<double> text = encodeText(message);
+      sent.insert(sent.end(), text.begin(), text.end());
     }
-    sent = { range.ok && message.empty() ? 1.0 : 0.0,
-      range.binary ? 1.0 : 0.0,
-      range.lower,
-      range.upper,
-      range.weakLower,
-      range.background,
-      range.backgroundNoise,
-      range.vessel,
-      static_cast<double>(qWhole[0]),
-      static_cast<double>(qWhole[1]),
-      static_cast<double>(qWhole[2]) };
-    const std::vector<double> text = encodeText(message);
-    sent.insert(sent.end(), text.begin(), text.end());
+    const std::vector<double> got = collectives.broadcast(sent, owner);
+    r.range.ok = got[0] > 0.5;
+    r.range.binary = got[1] > 0.5;
+    r.range.lower = got[2];
+    r.range.upper = got[3];
+    r.range.weakLower = got[4];
+    r.range.background = got[5];
+    r.range.backgroundNoise = got[6];
+    r.range.vessel = got[7];
+    qWhole = { static_cast<std::int64_t>(got[8]),
+      static_cast<std::int64_t>(got[9]),
+      static_cast<std::int64_t>(got[10]) };
+    r.range.message = decodeText(got, 11);
   }
-  const std::vector<double> got = collectives.broadcast(sent, owner);
-  r.range.ok = got[0] > 0.5;
-  r.range.binary = got[1] > 0.5;
-  r.range.lower = got[2];
-  r.range.upper = got[3];
-  r.range.weakLower = got[4];
-  r.range.background = got[5];
-  r.range.backgroundNoise = got[6];
-  r.range.vessel = got[7];
-  const std::array<std::int64_t, 3> qWhole{ static_cast<std::int64_t>(got[8]),
-    static_cast<std::int64_t>(got[9]),
-    static_cast<std::int64_t>(got[10]) };
-  r.range.message = decodeText(got, 11);
   lap("range");
   if (!r.range.ok)
   {
@@ -235,39 +273,48 @@ DistributedCandidateRegion::Result DistributedCandidateRegion::extract(const Vol
     return out;
   }
   // 3-4. The network grown from the seed, across the pieces; dim dead ends pruned per piece.
+  // Without a seed every voxel in the range (its own value decides it: exact on every held
+  // voxel), as the single run's threshold.
   const DistributedRegionGrowth growth(layout);
   SparseVesselMask region(piece.dims);
-  std::vector<std::uint64_t> dim;
-  const IntensityRange& range = r.range;
-  const auto accept = [&piece, &range](std::uint64_t lin)
+  if (!s.useSeed)
   {
-    const auto c = piece.index(lin);
-    return SeededRegionGrower::joins(piece, range, c[0], c[1], c[2]);
-  };
-  const auto onJoin = [&piece, &range, &dim](std::uint64_t lin)
+    region = SeededRegionGrower::threshold(piece, r.range);
+  }
+  else
   {
-    if (!SeededRegionGrower::strong(piece, range, lin))
+    std::vector<std::uint64_t> dim;
+    const IntensityRange& range = r.range;
+    const auto accept = [&piece, &range](std::uint64_t lin)
     {
-      dim.push_back(lin);
+      const auto c = piece.index(lin);
+      return SeededRegionGrower::joins(piece, range, c[0], c[1], c[2]);
+    };
+    const auto onJoin = [&piece, &range, &dim](std::uint64_t lin)
+    {
+      if (!SeededRegionGrower::strong(piece, range, lin))
+      {
+        dim.push_back(lin);
+      }
+    };
+    std::vector<std::uint64_t> seeds;
+    if (seedRank)
+    {
+      const auto q = layout.toLocal(qWhole);
+      seeds.push_back(piece.linear(q[0], q[1], q[2]));
     }
-  };
-  std::vector<std::uint64_t> seeds;
-  if (seedRank)
-  {
-    const auto q = layout.toLocal(qWhole);
-    seeds.push_back(piece.linear(q[0], q[1], q[2]));
+    const DistributedRegionGrowth::Outcome grown =
+      growth.run(collectives, region, seeds, accept, onJoin);
+    out.growthRounds = grown.rounds;
+    out.reportedVoxels += grown.reportedVoxels;
+    if (!grown.settled)
+    {
+      r.message = "VesselCenterline (distributed): " + grown.message + ".";
+      return out;
+    }
+    DimStrandPruner::prune(piece, range, dim, region);
+    region.finalize();
   }
-  const DistributedRegionGrowth::Outcome grown =
-    growth.run(collectives, region, seeds, accept, onJoin);
-  out.growthRounds = grown.rounds;
-  out.reportedVoxels += grown.reportedVoxels;
-  if (!grown.settled)
-  {
-    r.message = "VesselCenterline (distributed): " + grown.message + ".";
-    return out;
-  }
-  DimStrandPruner::prune(piece, range, dim, region);
-  region.finalize();
   // 5. The region's size over the owned voxels.
   double owned = 0.0;
   const VoxelBox& mineOwned = layout.owned[static_cast<std::size_t>(layout.rank)];
@@ -285,6 +332,11 @@ DistributedCandidateRegion::Result DistributedCandidateRegion::extract(const Vol
   SparseVesselMask kept;
   if (!tubes)
   {
+    if (!s.useSeed)
+    {
+      finishUnseeded(out, region, layout, collectives);
+      return out;
+    }
     kept = std::move(region);
   }
   else
@@ -305,8 +357,17 @@ DistributedCandidateRegion::Result DistributedCandidateRegion::extract(const Vol
     r.coreVoxels = static_cast<std::uint64_t>(collectives.sum(static_cast<double>(cut.coreVoxels)));
     if (r.coreVoxels == 0)
     {
-      r.message = "The seed's region has no vessel-like (tube-shaped) part: pick a point on a "
-                  "vessel in the MIP.";
+      // VesselCandidateRegion::extract's messages, word for word.
+      r.message = s.useSeed ? "The seed's region has no vessel-like (tube-shaped) part: pick a "
+                              "point on a vessel in the MIP."
+                            : "The volume has no vessel-like (tube-shaped) structure in the "
+                              "vessel range.";
+      return out;
+    }
+    if (!s.useSeed)
+    {
+      finishUnseeded(out, cut.mask, layout, collectives);
+      lap("necks");
       return out;
     }
     // 9. The kept voxel nearest the seed, on the seed's rank.

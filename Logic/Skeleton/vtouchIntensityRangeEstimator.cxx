@@ -76,6 +76,61 @@ double RobustStatistics::otsu(const std::vector<double>& values)
   return a + (split + 1) * width;
 }
 
+IntensityRange IntensityRangeEstimator::fromVolumeSample(const Scan& s,
+  const std::vector<double>& sample,
+  const Parameters& p)
+{
+  IntensityRange r;
+  r.upper = s.maximum;
+  if (s.minimum == s.maximum)
+  {
+    r.message = "The volume holds a single intensity: it has no vessel-like structure.";
+    return r;
+  }
+  if (s.twoValued)
+  {
+    r.binary = true;
+    r.lower = r.weakLower = 0.5 * (s.minimum + s.maximum);
+    r.background = s.minimum;
+    r.vessel = s.maximum;
+    r.ok = true;
+    return r;
+  }
+  std::vector<double> ordered = sample;
+  const RobustStatistics bg = RobustStatistics::of(ordered);
+  r.background = bg.median;
+  r.backgroundNoise = std::max(bg.sigma, 1e-3 * (s.maximum - s.minimum));
+  const double floor = r.background + p.noiseMargin * r.backgroundNoise;
+  std::vector<double> tail;
+  for (double v : sample)
+  {
+    if (v > floor)
+    {
+      tail.push_back(v);
+    }
+  }
+  // Fewer than 1e-4 of the voxels above the noise: nothing to extract.
+  if (tail.size() < std::max<std::size_t>(2, sample.size() / 10000))
+  {
+    r.message = "The volume has no vessel-like structure: nothing is brighter than its "
+                "background noise.";
+    return r;
+  }
+  r.lower = std::max(RobustStatistics::otsu(tail), floor);
+  std::vector<double> above;
+  for (double v : tail)
+  {
+    if (v >= r.lower)
+    {
+      above.push_back(v);
+    }
+  }
+  r.vessel = above.empty() ? r.lower : RobustStatistics::of(above).median;
+  r.weakLower = r.lower;
+  r.ok = true;
+  return r;
+}
+
 std::string IntensityRangeEstimator::backgroundMessage(double intensity)
 {
   char text[200];

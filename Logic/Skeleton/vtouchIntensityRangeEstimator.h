@@ -105,6 +105,28 @@ public:
   };
   template<typename T>
   static Scan scan(const VolumeView<T>& volume, const ProgressSpan& progress = ProgressSpan());
+  /// fromVolume's sample: every stride-th voxel of the volume in its linear index order, from
+  /// index 0, with this stride for a volume of `voxels` (at most about
+  /// Parameters::wholeVolumeSamples values). Public for the distributed run
+  /// (DistributedVolumeRange): each rank samples the owned voxels on that lattice.
+  static std::uint64_t sampleStride(std::uint64_t voxels, const Parameters& p = Parameters{})
+  {
+    return std::max<std::uint64_t>(1, voxels / p.wholeVolumeSamples);
+  }
+  /// Whether fromVolume samples the volume after its scan (not for a single intensity or a
+  /// two-valued mask: the scan decides those).
+  static bool needsSample(const Scan& wholeScan)
+  {
+    return !(wholeScan.minimum == wholeScan.maximum) && !wholeScan.twoValued;
+  }
+  /// fromVolume given the whole volume's scan and its sample (sampleStride; empty when
+  /// !needsSample). Only order statistics and histogram counts of the sample are used, so the
+  /// order of the values does not change the range (the distributed run gathers the ranks'
+  /// samples rank by rank).
+  static IntensityRange fromVolumeSample(const Scan& wholeScan,
+    const std::vector<double>& sample,
+    const Parameters& p = Parameters{});
+
   /// fromSeed with the whole volume's scan given (`volume` may be a piece of it that holds the
   /// seed's neighbourhood: the cube of neighbourhoodHalfSize_voxels and the peak search).
   template<typename T>
@@ -271,69 +293,25 @@ IntensityRange IntensityRangeEstimator::fromVolume(const VolumeView<T>& volume,
   const Parameters& p,
   const ProgressSpan& progress)
 {
-  IntensityRange r;
   if (volume.size() == 0)
   {
+    IntensityRange r;
     r.message = "The volume is empty.";
     return r;
   }
   const Scan s = scan(volume, progress);
-  r.upper = s.maximum;
-  if (s.minimum == s.maximum)
-  {
-    r.message = "The volume holds a single intensity: it has no vessel-like structure.";
-    return r;
-  }
-  if (s.twoValued)
-  {
-    r.binary = true;
-    r.lower = r.weakLower = 0.5 * (s.minimum + s.maximum);
-    r.background = s.minimum;
-    r.vessel = s.maximum;
-    r.ok = true;
-    return r;
-  }
-  const std::uint64_t n = volume.size();
-  const std::uint64_t stride = std::max<std::uint64_t>(1, n / p.wholeVolumeSamples);
   std::vector<double> sample;
-  sample.reserve(static_cast<std::size_t>(n / stride + 1));
-  for (std::uint64_t i = 0; i < n; i += stride)
+  if (needsSample(s))
   {
-    sample.push_back(static_cast<double>(volume.voxels[i]));
-  }
-  std::vector<double> ordered = sample;
-  const RobustStatistics bg = RobustStatistics::of(ordered);
-  r.background = bg.median;
-  r.backgroundNoise = std::max(bg.sigma, 1e-3 * (s.maximum - s.minimum));
-  const double floor = r.background + p.noiseMargin * r.backgroundNoise;
-  std::vector<double> tail;
-  for (double v : sample)
-  {
-    if (v > floor)
+    const std::uint64_t n = volume.size();
+    const std::uint64_t stride = sampleStride(n, p);
+    sample.reserve(static_cast<std::size_t>(n / stride + 1));
+    for (std::uint64_t i = 0; i < n; i += stride)
     {
-      tail.push_back(v);
+      sample.push_back(static_cast<double>(volume.voxels[i]));
     }
   }
-  // Fewer than 1e-4 of the voxels above the noise: nothing to extract.
-  if (tail.size() < std::max<std::size_t>(2, sample.size() / 10000))
-  {
-    r.message = "The volume has no vessel-like structure: nothing is brighter than its "
-                "background noise.";
-    return r;
-  }
-  r.lower = std::max(RobustStatistics::otsu(tail), floor);
-  std::vector<double> above;
-  for (double v : tail)
-  {
-    if (v >= r.lower)
-    {
-      above.push_back(v);
-    }
-  }
-  r.vessel = above.empty() ? r.lower : RobustStatistics::of(above).median;
-  r.weakLower = r.lower;
-  r.ok = true;
-  return r;
+  return fromVolumeSample(s, sample, p);
 }
 
 } // namespace vtouch

@@ -244,7 +244,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     vtouch::CandidateRegionOutcome region;
     try
     {
-      // Distributed raw seeded mode: the region the ranks computed together (the hook).
+      // Distributed raw modes: the region the ranks computed together (the hook).
       region = this->DistributedRegion ? *this->DistributedRegion
                                        : vtouch::runCandidateRegion(input, scalars, request);
     }
@@ -408,15 +408,16 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
 bool vtkVesselTouchCenterlineFilter::DistributesExactly() const
 {
   // The modes RequestDistributed codes with the global SS field (globalSeedCode, globalRootCode):
-  // a seed, or a thresholded / binary mask without one, at full resolution. Vesselness is left
-  // out: its Hessian on a piece is the whole volume's only as far as the margin reaches.
-  return this->DownsampleFactor <= 1 && !this->UseVesselness &&
-         (this->UseSeedPoint || !this->AutomaticIntensityRange);
+  // a seed, a thresholded / binary mask without one, or the raw mode without a seed (its range
+  // and region computed across the ranks, h19x), at full resolution. Vesselness is left out: its
+  // Hessian on a piece is the whole volume's only as far as the margin reaches.
+  return this->DownsampleFactor <= 1 && !this->UseVesselness;
 }
 
 bool vtkVesselTouchCenterlineFilter::Distributed(int piece, int pieces) const
 {
-  const bool wanted = this->DistributedExtraction == DistributedExtractionOn ||
+  const bool wanted =
+    this->DistributedExtraction == DistributedExtractionOn ||
     (this->DistributedExtraction == DistributedExtractionAutomatic && this->DistributesExactly());
   return wanted && vtouch::DistributedCenterline::controllerFor(piece, pieces) != nullptr;
 }
@@ -463,15 +464,14 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   // The global SS field (issue 19 item 2): every rank codes its piece with the single run's SS
   // field, computed across the ranks (vtouch::DistributedGlobalField, the coder's hook), instead
   // of from roots of its own: from the seed in the seeded modes, from the single run's automatic
-  // roots on an unseeded thresholded or binary mask. The raw mode without a seed keeps each
-  // rank's own roots: each rank estimates its range and region on its piece alone, so its mask
-  // is not its piece of one whole mask (DistributedRootChoice's precondition). At full
+  // roots without a seed (a thresholded or binary mask, or the raw mode: its region is computed
+  // across the ranks and each rank takes its held voxels' owners' decisions, so every rank's
+  // mask is its piece of one whole mask, DistributedRootChoice's precondition). At full
   // resolution (project rule: a coarse block grid starts at each piece's first voxel, not on one
   // grid of the whole volume): an explicit DownsampleFactor > 1 keeps each rank's own roots.
   const bool fullResolution = this->DownsampleFactor <= 1;
   const bool globalSeedCode = this->UseSeedPoint && fullResolution;
-  const bool globalRootCode =
-    !this->UseSeedPoint && !this->AutomaticIntensityRange && fullResolution;
+  const bool globalRootCode = !this->UseSeedPoint && fullResolution;
   std::unique_ptr<vtouch::DistributedGlobalField> field;
   const auto controller = []
   {
@@ -479,24 +479,47 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       vtkMultiProcessController::GetGlobalController()->GetLocalProcessId(),
       vtkMultiProcessController::GetGlobalController()->GetNumberOfProcesses());
   };
-  // The raw seeded mode: the range and the region with the other ranks (collective), then the
-  // piece's own run codes that region (the hook in ExtractVolume). Without the global SS code the
-  // seed's rank adds the parts of the network that reach the seed only outside its piece.
+  // The automatic roots' field (globalRootCode), collective. The coder's own settings: its
+  // MinimumComponentSize in input voxels (the field is coded at full resolution), and the
+  // cluster width it leaves at its default (0: the largest spacing; VoxelCodingSkeletonFilter's
+  // ClusterWidth, never set here).
+  const auto rootField = [&](vtkImageData* input, const vtouch::VoxelExtent6& whole)
+  {
+    vtouch::DistributedRootChoice::Parameters parameters;
+    parameters.minimumComponentSize =
+      static_cast<std::uint64_t>(std::max(1, this->MinimumComponentSize));
+    parameters.clusterWidth_mm = 0.0;
+    field = vtouch::DistributedGlobalField::automaticRoot(controller(), input, whole, parameters);
+    this->DistributedField = field.get();
+  };
+  // The raw modes (automatic range): the range and the region with the other ranks (collective),
+  // then the piece's own run codes that region (the hook in ExtractVolume). Seeded without the
+  // global SS code, the seed's rank adds the parts of the network that reach the seed only
+  // outside its piece. Without a seed the range is the whole volume's (fromVolume's sample
+  // across the ranks) and the region every kept voxel in it (h19x).
   vtouch::CandidateRegionOutcome region, rest;
   vtouch::DistributedRawRegion::Report regionReport;
-  const bool raw = this->AutomaticIntensityRange && this->UseSeedPoint;
+  const bool raw = this->AutomaticIntensityRange;
   if (raw)
   {
     hooks.beforePiece = [&](vtkImageData* input, const vtouch::VoxelExtent6& whole)
     {
       vtouch::CandidateRegionRequest request;
-      request.useSeed = true;
+      request.useSeed = this->UseSeedPoint;
       std::copy(this->SeedPoint, this->SeedPoint + 3, request.seed_World_mm);
       vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
       region = vtouch::DistributedRawRegion::run(
         controller(), input, scalars, whole, request, regionReport);
       this->DistributedRegion = &region;
+      if (!this->UseSeedPoint)
+      {
+        if (globalRootCode)
+        {
+          rootField(input, whole); // the single run's automatic roots on the common region
+        }
+        return;
+      }
       if (!globalSeedCode)
       {
         rest = vtouch::DistributedRawRegion::splitSeedComponent(region);
@@ -534,18 +557,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   }
   else if (globalRootCode)
   {
-    hooks.beforePiece = [&](vtkImageData* input, const vtouch::VoxelExtent6& whole)
-    {
-      // The coder's own settings: its MinimumComponentSize in input voxels (the field is coded
-      // at full resolution), and the cluster width it leaves at its default (0: the largest
-      // spacing; VoxelCodingSkeletonFilter's ClusterWidth, never set here).
-      vtouch::DistributedRootChoice::Parameters parameters;
-      parameters.minimumComponentSize =
-        static_cast<std::uint64_t>(std::max(1, this->MinimumComponentSize));
-      parameters.clusterWidth_mm = 0.0;
-      field = vtouch::DistributedGlobalField::automaticRoot(controller(), input, whole, parameters);
-      this->DistributedField = field.get();
-    };
+    hooks.beforePiece = rootField;
   }
   if (globalSeedCode || globalRootCode)
   {

@@ -120,18 +120,21 @@ public:
   ///   its owned points and an overlap band, and the first rank stitches the pieces (the memory per
   ///   rank falls with the ranks), in every mode.
   /// - DistributedExtractionAutomatic (2): On where the distributed run codes with
-  ///   the single run's SS field from the single run's root (a thresholded or binary mask, with or
-  ///   without a seed, and the raw seeded mode, at full resolution; see DistributesExactly), Off
-  ///   elsewhere (the raw mode without a seed, where each rank would estimate its own range; an
-  ///   explicit DownsampleFactor > 1; vesselness), where only the first rank gives the single
-  ///   run's network (project rule: the default never trades the single run's network for memory).
+  ///   the single run's SS field from the single run's root (a thresholded or binary mask and
+  ///   the raw mode, with or without a seed, at full resolution; see DistributesExactly), Off
+  ///   elsewhere (an explicit DownsampleFactor > 1; vesselness), where only the first rank gives
+  ///   the single run's network (project rule: the default never trades the single run's
+  ///   network for memory).
   enum
   {
     DistributedExtractionOff = 0,
     DistributedExtractionOn = 1,
     DistributedExtractionAutomatic = 2
   };
-  vtkSetClampMacro(DistributedExtraction, int, DistributedExtractionOff, DistributedExtractionAutomatic);
+  vtkSetClampMacro(DistributedExtraction,
+    int,
+    DistributedExtractionOff,
+    DistributedExtractionAutomatic);
   vtkGetMacro(DistributedExtraction, int);
   /// Whether the current settings are a mode the distributed run codes with the single run's field
   /// (what DistributedExtractionAutomatic distributes).

@@ -27,6 +27,7 @@ DistributedCandidateRegion::Result extractTyped(vtkImageData* piece,
   const T* data,
   const PieceLayout& layout,
   const std::array<std::int64_t, 3>& seed,
+  bool useSeed,
   RankCollectives& c)
 {
   VolumeView<T> view;
@@ -41,7 +42,7 @@ DistributedCandidateRegion::Result extractTyped(vtkImageData* piece,
   VesselCandidateRegion::Settings s;
   s.automatic = true;
   s.cutNonTubular = true;
-  s.useSeed = true;
+  s.useSeed = useSeed;
   s.seed = seed;
   return DistributedCandidateRegion::extract(view, layout, seed, s, c);
 }
@@ -78,6 +79,13 @@ void DistributedRawRegion::addReport(vtkFieldData* fd, const Report& report)
   sent->SetName("RegionVoxelsSent");
   sent->InsertNextValue(report.sentVoxels);
   fd->AddArray(sent);
+  if (!report.seeded)
+  {
+    vtkNew<vtkDoubleArray> adopted;
+    adopted->SetName("RegionHeldVoxelsFromOwners");
+    adopted->InsertNextValue(report.heldVoxelsFromOwners);
+    fd->AddArray(adopted);
+  }
 }
 
 CandidateRegionOutcome DistributedRawRegion::splitSeedComponent(CandidateRegionOutcome& seeded)
@@ -132,9 +140,10 @@ CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* cont
     return out;
   }
   // The seed's voxel in the whole volume: every rank with a piece computes the same; a rank
-  // without one (it owns nothing) takes theirs.
+  // without one (it owns nothing) takes theirs. (Without a seed every rank skips this exchange:
+  // the request is the filter's, the same on every rank.)
   std::vector<std::int64_t> mine;
-  if (usable)
+  if (usable && request.useSeed)
   {
     const std::array<std::int64_t, 3> index = worldToIndex(piece, request.seed_World_mm);
     for (std::size_t a = 0; a < 3; ++a)
@@ -143,25 +152,35 @@ CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* cont
     }
   }
   std::array<std::int64_t, 3> seed{ -1, -1, -1 };
-  for (const std::vector<std::int64_t>& theirs : c.allGather(mine))
+  if (request.useSeed)
   {
-    if (theirs.size() == 3)
+    for (const std::vector<std::int64_t>& theirs : c.allGather(mine))
     {
-      seed = { theirs[0], theirs[1], theirs[2] };
-      break;
+      if (theirs.size() == 3)
+      {
+        seed = { theirs[0], theirs[1], theirs[2] };
+        break;
+      }
     }
   }
   // A rank without a usable piece joins the collectives with no voxels (as float).
   DistributedCandidateRegion::Result r =
-    usable ? withTypedScalars(scalars,
-               [&](const auto* voxels) { return extractTyped(piece, voxels, layout, seed, c); })
-           : extractTyped(nullptr, static_cast<const float*>(nullptr), layout, seed, c);
+    usable
+      ? withTypedScalars(scalars,
+          [&](const auto* voxels)
+          { return extractTyped(piece, voxels, layout, seed, request.useSeed, c); })
+      : extractTyped(nullptr, static_cast<const float*>(nullptr), layout, seed, request.useSeed, c);
   report.growthRounds = r.growthRounds;
   report.componentRounds = r.componentRounds;
   report.sentVoxels = static_cast<double>(r.reportedVoxels);
+  report.seeded = request.useSeed;
+  report.heldVoxelsFromOwners = static_cast<double>(r.heldVoxelsFromOwners);
   out.ok = r.region.ok;
   out.message = r.region.message;
-  if (layout.ownerOf(seed) < 0 && piece)
+  // Without a seed a two-valued volume is a mask the coder thresholds itself, as the single run
+  // (runCandidateRegion's `binary`).
+  out.binary = !request.useSeed && r.region.range.binary;
+  if (request.useSeed && layout.ownerOf(seed) < 0 && piece)
   {
     out.message = outsideText(piece, whole, request.seed_World_mm, seed);
   }
@@ -172,7 +191,7 @@ CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* cont
   out.stageSeconds = r.region.stageSeconds;
   if (r.region.ok)
   {
-    if (r.region.mask.vesselCount() == 0)
+    if (r.region.mask.vesselCount() == 0 && request.useSeed)
     {
       out.ok = false; // normal: the seed's network does not reach this piece
       out.message = "VesselCenterline (distributed): the seed's network does not reach this piece.";

@@ -1,5 +1,5 @@
-// VesselCenterline's raw seeded mode on a parallel pvserver (issue 19 item 2, issue 16 item 1):
-// the candidate region of the rank's held piece, computed with the other ranks
+// VesselCenterline's raw modes on a parallel pvserver (issue 19 item 2, issue 16 item 1), seeded
+// and without a seed: the candidate region of the rank's held piece, computed with the other ranks
 // (vtouch::DistributedCandidateRegion over vtkMultiProcessController), as the outcome the
 // filter's one-process path takes from runCandidateRegion. Not a wrapped class: the filter's
 // private helper (the hook in vtkVesselTouchCenterlineFilter::RequestDistributed).
@@ -22,6 +22,9 @@ public:
     int growthRounds = 0;    ///< RegionGrowthRounds
     int componentRounds = 0; ///< RegionComponentRounds (the seed's component after the neck cut)
     double sentVoxels = 0.0; ///< RegionVoxelsSent: boundary voxels this rank reported
+    bool seeded = true;      ///< false: the unseeded mode (the next array is written)
+    /// RegionHeldVoxelsFromOwners (unseeded): held voxels whose decision the owner's changed.
+    double heldVoxelsFromOwners = 0.0;
   };
 
   /// The ghost margin the raw seeded mode needs at least (voxels): the range estimate's seed
@@ -39,7 +42,7 @@ public:
     return minimumComponentSize < marginVoxels ? minimumComponentSize : marginVoxels;
   }
   /// RegionGrowthRounds, RegionComponentRounds (int) and RegionVoxelsSent (this rank's) as field
-  /// arrays.
+  /// arrays; without a seed also RegionHeldVoxelsFromOwners (this rank's).
   static void addReport(vtkFieldData* fd, const Report& report);
 
   /// On the seed's rank: leaves in `seeded` the seed's 26-connected component of its region
@@ -51,7 +54,8 @@ public:
 
   /// Collective: every rank calls it once per run, whatever its input (null: an empty piece;
   /// every rank then gets the same message). `piece` is the rank's input (its extent in the
-  /// whole volume's index), `whole` the whole extent, `request` the filter's (seeded, automatic).
+  /// whole volume's index), `whole` the whole extent, `request` the filter's (automatic; seeded or
+  /// not, the same on every rank: without a seed the region is every kept voxel in the range).
   static CandidateRegionOutcome run(vtkMultiProcessController* controller,
     vtkImageData* piece,
     vtkDataArray* scalars,

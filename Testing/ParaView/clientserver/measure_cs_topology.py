@@ -12,46 +12,74 @@ polyline, and the stitch's field arrays (Stitch*). The scaling bench's tree:
 the run is seeded (UseSeedPoint: the distributed run codes with the global SS code, its rounds
 printed as SeedCodeRounds); without, the distributed run codes with the single run's automatic
 roots (RootChoiceRounds, RootChoicePropagations, RootChoiceComponents, RootChoiceRoots: whole
-voxel indices, to seed a 1-rank run there with --seed). A measurement, not a test: nothing is asserted.
+voxel indices, to seed a 1-rank run there with --seed). With --automatic the range is
+estimated (AutomaticIntensityRange: the raw modes; without --seed the range from the whole volume,
+computed across the ranks) and IntensityRangeUsed is printed; --raw-phantom N writes
+VesselPhantom's raw angiogram (ClientServer.DistributedRawSeeded's: 60 segments, 4 clutter
+objects, seed 3, float) at N^3 to --volume first; --largest-radius sets LargestVesselRadius (the
+ghost margin). Each run prints its UpdatePipeline time (client wall clock, the server's run and
+the delivery) and, against the first rank count's run, the farthest point either way (voxels).
+A measurement, not a test: nothing is asserted.
 """
 
 import argparse
 import os
 import sys
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [HERE, os.path.dirname(HERE)]
-from vtouch_pvserver import ParallelServer  # noqa: E402
-from vtouch_skeleton_graph import graph  # noqa: E402
+from vtouch_pvserver import ParallelServer, write_float_nrrd  # noqa: E402
+from vtouch_skeleton_graph import farthest_point_voxels, graph  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
 
 
-def measure(volume, ranks, lower, upper, seed=None):
+def write_raw_phantom(path, n):
+    """ClientServer.DistributedRawSeeded's raw angiogram at n^3, as float raw NRRD (built in)."""
+    simple.LoadPlugin(os.environ["VESSELTOUCH_PLUGIN"], remote=False, ns=globals())
+    phantom = VesselPhantom(Shape=8, Dimensions=[n, n, n], AngiogramSegments=60,  # noqa: F821
+                            ClutterCount=4, Seed=3, OutputScalarType=10)
+    write_float_nrrd(path, sm.Fetch(phantom))
+    simple.Delete(phantom)
+
+
+def measure(volume, ranks, lower, upper, seed=None, automatic=False, radius=0.0, first=None):
     server = ParallelServer(ranks=ranks)
     server.start()
     try:
         server.connect(os.environ["VESSELTOUCH_PLUGIN"])
         reader = simple.OpenDataFile(volume)
-        centerline = simple.VesselCenterline(Input=reader, AutomaticIntensityRange=0,
+        reader.UpdatePipeline()  # the reader's time is not the filter's
+        centerline = simple.VesselCenterline(Input=reader,
+                                             AutomaticIntensityRange=1 if automatic else 0,
                                              LowerThreshold=lower, UpperThreshold=upper,
+                                             LargestVesselRadius=radius,
                                              DistributedExtraction=1 if ranks > 1 else 0)
         if seed:
             centerline.UseSeedPoint = 1
             centerline.SeedPoint = seed
+        start = time.perf_counter()
         centerline.UpdatePipeline()
+        seconds = time.perf_counter() - start
         data = sm.Fetch(centerline)
         g = graph(data, 1.0)
         fd = data.GetFieldData()
         stitch = {fd.GetArrayName(i): fd.GetArray(i).GetTuple(0)[0]
                   for i in range(fd.GetNumberOfArrays())
-                  if fd.GetArrayName(i).startswith(("Stitch", "SeedCode", "RootChoice"))}
+                  if fd.GetArrayName(i).startswith(("Stitch", "SeedCode", "RootChoice", "Region",
+                                                      "ClutterStretches", "ContactStretches",
+                                                      "NonTubular"))}
         roots = fd.GetArray("RootChoiceRoots")
         if roots is not None:
             # Every root voxel of every component (whole index), not only the first.
             stitch["RootChoiceRoots"] = [tuple(int(v) for v in roots.GetTuple(i))
                                          for i in range(roots.GetNumberOfTuples())]
+        used = fd.GetArray("IntensityRangeUsed")
+        if used is not None:
+            stitch["IntensityRangeUsed"] = [used.GetTuple(i)[0]
+                                            for i in range(used.GetNumberOfTuples())]
         message = fd.GetAbstractArray("ExtractionMessage")
         if message is not None and message.GetNumberOfValues() and message.GetValue(0):
             print("ranks %d: message %r" % (ranks, message.GetValue(0)))
@@ -60,7 +88,14 @@ def measure(volume, ranks, lower, upper, seed=None):
               "polyline %d points; %s" % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(),
                                           g["ends"], len(g["bifurcations"]), g["cycles"],
                                           shortest, stitch))
+        farthest = ""
+        if first is not None and len(first) and len(g["points"]):
+            farthest = "; farthest point from the first run %.3f voxel, of it %.3f voxel" % (
+                farthest_point_voxels(g["points"], first, 1.0),
+                farthest_point_voxels(first, g["points"], 1.0))
+        print("ranks %d: VesselCenterline UpdatePipeline %.2f s%s" % (ranks, seconds, farthest))
         simple.Disconnect()
+        return g["points"]
     finally:
         server.stop()
 
@@ -73,13 +108,24 @@ def main():
     parser.add_argument("--upper", type=float, default=65535.0)
     parser.add_argument("--seed", type=float, nargs=3, default=None,
                         help="a seed point (world mm): the seeded mode")
+    parser.add_argument("--automatic", action="store_true",
+                        help="AutomaticIntensityRange (the raw modes)")
+    parser.add_argument("--largest-radius", type=float, default=0.0,
+                        help="LargestVesselRadius, mm (0: automatic)")
+    parser.add_argument("--raw-phantom", type=int, default=0,
+                        help="write the raw phantom at N^3 to --volume first")
     args = parser.parse_args()
+    if args.raw_phantom:
+        write_raw_phantom(args.volume, args.raw_phantom)
     if not os.path.exists(args.volume):
         sys.exit("no volume at %s" % args.volume)
     if "VESSELTOUCH_PLUGIN" not in os.environ:
         sys.exit("set VESSELTOUCH_PLUGIN to the plugin's VesselTouch.so")
+    first = None
     for ranks in args.ranks:
-        measure(args.volume, ranks, args.lower, args.upper, args.seed)
+        points = measure(args.volume, ranks, args.lower, args.upper, args.seed, args.automatic,
+                         args.largest_radius, first)
+        first = points if first is None else first
 
 
 if __name__ == "__main__":
