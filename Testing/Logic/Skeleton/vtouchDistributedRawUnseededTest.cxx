@@ -10,6 +10,7 @@
 #include "vtouchHeldRegionFromOwners.h"
 #include "vtouchPhantomGenerator.h"
 #include "vtouchPieceGrid.h"
+#include "vtouchRankPiece.h"
 #include "vtouchVesselCandidateRegion.h"
 
 #include <gtest/gtest.h>
@@ -66,26 +67,6 @@ Volume rawPhantom(int n, std::uint32_t seed)
   return v;
 }
 
-/// Rank `l`'s piece of `g`: a copy of its held box, as a reader gives it.
-struct RankPiece
-{
-  RankPiece(const Volume& g, const PieceLayout& l)
-  {
-    const VoxelBox& b = l.mine();
-    for (std::int64_t k = b.lo[2]; k <= b.hi[2]; ++k)
-      for (std::int64_t j = b.lo[1]; j <= b.hi[1]; ++j)
-        for (std::int64_t i = b.lo[0]; i <= b.hi[0]; ++i)
-        {
-          voxels.push_back(g.voxels[static_cast<std::size_t>(i + g.dims[0] * (j + g.dims[1] * k))]);
-        }
-    view.voxels = voxels.data();
-    view.dims = l.pieceDims();
-  }
-  RankPiece(const RankPiece&) = delete; // the view points into `voxels`
-  RankPiece& operator=(const RankPiece&) = delete;
-  std::vector<float> voxels;
-  VolumeView<float> view;
-};
 
 struct RankRegion
 {
@@ -106,7 +87,7 @@ std::vector<RankRegion> unseeded(const Volume& g, const std::array<int, 3>& coun
   return onEveryRank<RankRegion>(test::layouts(g.dims, counts, margin),
     [&](const PieceLayout& l, RankCollectives& c, RankRegion& mine)
     {
-      const RankPiece piece(g, l);
+      const test::RankPiece piece(g.voxels, g.dims, l);
       const DistributedCandidateRegion::Result result =
         DistributedCandidateRegion::extract(piece.view, l, { -1, -1, -1 }, s, c);
       mine.ok = result.region.ok;
@@ -172,7 +153,7 @@ TEST(DistributedRawUnseeded, RangeIsTheSingleRunsBitForBitOnTwoFourAndEightPiece
           onEveryRank<IntensityRange>(test::layouts(g.dims, counts, kMargin),
             [&](const PieceLayout& l, RankCollectives& c, IntensityRange& mine)
             {
-              const RankPiece piece(g, l);
+              const test::RankPiece piece(g.voxels, g.dims, l);
               const IntensityRangeEstimator::Scan local = IntensityRangeEstimator::scan(piece.view);
               // The whole scan from the pieces' (DistributedCandidateRegion's step 1 combines them
               // so).
@@ -221,7 +202,7 @@ TEST(DistributedRawUnseeded, OwnedSamplesTileFromVolumesLattice)
     onEveryRank<std::vector<double>>(test::layouts(g.dims, { 2, 2, 2 }, 3),
       [&](const PieceLayout& l, RankCollectives&, std::vector<double>& mine)
       {
-        const RankPiece piece(g, l);
+        const test::RankPiece piece(g.voxels, g.dims, l);
         mine = DistributedVolumeRange::ownedSample(piece.view, l, p);
       });
   std::vector<double> all;
@@ -367,7 +348,7 @@ TEST(DistributedRawUnseeded, RankWithAnEmptyPieceJoinsEveryCollective)
   std::vector<RankRegion> ranks = onEveryRank<RankRegion>(pieces,
     [&](const PieceLayout& l, RankCollectives& c, RankRegion& mine)
     {
-      const RankPiece piece(g, l);
+      const test::RankPiece piece(g.voxels, g.dims, l);
       const DistributedCandidateRegion::Result result = DistributedCandidateRegion::extract(
         piece.view, l, { -1, -1, -1 }, VesselCandidateRegion::Settings{}, c);
       mine.ok = result.region.ok;

@@ -6,6 +6,7 @@
 #include "vtouchDistributedRegionGrowth.h"
 #include "vtouchEveryRank.h"
 #include "vtouchPieceGrid.h"
+#include "vtouchRankPiece.h"
 #include "vtouchRawAngiogramTestImages.h"
 #include "vtouchSeedComponentSplit.h"
 #include "vtouchVesselCandidateRegion.h"
@@ -44,42 +45,6 @@ std::vector<PieceLayout> layouts(std::array<std::int64_t, 3> dims, int ranks, in
   return test::layouts(dims, counts, margin);
 }
 
-/// Rank `l`'s piece of `g`: a copy of its held box (as a reader would give it) and the view of it.
-struct RankPiece
-{
-  RankPiece(const SyntheticAngiogram& g, const PieceLayout& l)
-    : layout(l)
-  {
-    const VoxelBox& b = l.mine();
-    for (std::int64_t k = b.lo[2]; k <= b.hi[2]; ++k)
-      for (std::int64_t j = b.lo[1]; j <= b.hi[1]; ++j)
-        for (std::int64_t i = b.lo[0]; i <= b.hi[0]; ++i)
-        {
-          voxels.push_back(g.voxels[static_cast<std::size_t>(i + g.dims[0] * (j + g.dims[1] * k))]);
-        }
-    view.voxels = voxels.data();
-    view.dims = l.pieceDims();
-  }
-  RankPiece(const RankPiece&) = delete; // the view points into `voxels`
-  RankPiece& operator=(const RankPiece&) = delete;
-
-  /// The local linear index of whole-volume voxel `w` (held by the rank).
-  std::uint64_t linear(const std::array<std::int64_t, 3>& w) const
-  {
-    const auto q = layout.toLocal(w);
-    return view.linear(q[0], q[1], q[2]);
-  }
-  /// The growth's seeds on this rank: `seed`'s local index where the rank owns it, else none.
-  std::vector<std::uint64_t> seedsOwned(const std::array<std::int64_t, 3>& seed) const
-  {
-    return layout.ownerOf(seed) == layout.rank ? std::vector<std::uint64_t>{ linear(seed) }
-                                               : std::vector<std::uint64_t>{};
-  }
-
-  const PieceLayout& layout;
-  std::vector<float> voxels;
-  VolumeView<float> view;
-};
 
 /// A tube that runs from piece 0 up into piece 1, across, and back down into piece 0 far from
 /// where it left (a U), and a tube of its own that the growth must not reach.
@@ -142,7 +107,7 @@ TEST(DistributedRegionGrowth, NetworkLeavingThePieceAndComingBackMatchesOneProce
     const std::vector<Grown> grown = onEveryRank<Grown>(layouts(g.dims, ranks, 2),
       [&](const PieceLayout& l, RankCollectives& c, Grown& out)
       {
-        const RankPiece piece(g, l);
+        const test::RankPiece piece(g.voxels, g.dims, l);
         const VolumeView<float>& v = piece.view;
         SparseVesselMask mask(v.dims);
         const DistributedRegionGrowth growth(l);
@@ -184,7 +149,7 @@ TEST(DistributedRegionGrowth, RoundCapStopsEveryRankWithAMessage)
   const std::vector<std::string> messages = onEveryRank<std::string>(layouts(g.dims, 2, 2),
     [&](const PieceLayout& l, RankCollectives& c, std::string& message)
     {
-      const RankPiece piece(g, l); // the seed in rank 0's piece
+      const test::RankPiece piece(g.voxels, g.dims, l); // the seed in rank 0's piece
       const VolumeView<float>& v = piece.view;
       SparseVesselMask mask(v.dims);
       const auto o = DistributedRegionGrowth(l).run(
@@ -210,7 +175,7 @@ TEST(DistributedRegionGrowth, AcceptThrowingOnOneRankThrowsOnEveryRank)
     [&](const PieceLayout& l, RankCollectives& c, std::string& what)
     {
       const int r = l.rank;
-      const RankPiece piece(g, l); // the seed in rank 0's piece
+      const test::RankPiece piece(g.voxels, g.dims, l); // the seed in rank 0's piece
       const VolumeView<float>& v = piece.view;
       SparseVesselMask mask(v.dims);
       const std::vector<std::uint64_t> seeds = piece.seedsOwned({ 6, 12, 8 });
@@ -276,7 +241,7 @@ std::vector<RankRegion> distributedRegion(const SyntheticAngiogram& g,
   return onEveryRank<RankRegion>(layouts(g.dims, ranks, margin),
     [&](const PieceLayout& l, RankCollectives& c, RankRegion& mine)
     {
-      const RankPiece piece(g, l);
+      const test::RankPiece piece(g.voxels, g.dims, l);
       VesselCandidateRegion::Settings s;
       s.useSeed = true;
       const auto result = DistributedCandidateRegion::extract(piece.view, l, seed, s, c);

@@ -141,6 +141,21 @@ def builtin_references(folder):
     return path, refs
 
 
+def check_stitched_topology(name, got, reference, unmatched):
+    """Every cut end joined and the built-in topology; where they differ, prints the ends and
+    bifurcations with no counterpart within 4 voxels."""
+    check(unmatched is not None and unmatched[0][0] == 0,
+          "%s: every cut end joined (%s unmatched)" % (name, unmatched))
+    check(got is not None and topology(got) == topology(reference),
+          "%s: the built-in topology (%s vs %s)"
+          % (name, topology(got) if got else None, topology(reference)))
+    if got is not None and topology(got) != topology(reference):
+        for what in ("end_points", "bifurcations"):
+            print("  %s only distributed: %s; only built in: %s"
+                  % (what, unpaired(got[what], reference[what]),
+                     unpaired(reference[what], got[what])))
+
+
 def distributed_unseeded(volume):
     """The raw mode without a seed on the server, DistributedExtraction Automatic."""
     reference = UNSEEDED["graph"]
@@ -173,16 +188,7 @@ def distributed_unseeded(volume):
           "no seed: coded with the single run's automatic roots across the ranks")
     check(field(data, "RegionHeldVoxelsFromOwners") is not None,
           "no seed: the region computed across the ranks")
-    check(unmatched is not None and unmatched[0][0] == 0,
-          "no seed: every cut end joined (%s unmatched)" % unmatched)
-    check(got is not None and topology(got) == topology(reference),
-          "no seed: the built-in topology (%s vs %s)"
-          % (topology(got) if got else None, topology(reference)))
-    if got is not None and topology(got) != topology(reference):
-        for what in ("end_points", "bifurcations"):
-            print("  %s only distributed: %s; only built in: %s"
-                  % (what, unpaired(got[what], reference[what]),
-                     unpaired(reference[what], got[what])))
+    check_stitched_topology("no seed", got, reference, unmatched)
     if got is not None:
         to_ref = farthest_point_voxels(got["points"], reference["points"], 1.0)
         from_ref = farthest_point_voxels(reference["points"], got["points"], 1.0)
@@ -273,17 +279,7 @@ def distributed(server, path, refs):
             check(rounds is not None and rounds[0][0] >= 3,
                   "%s: the growth's rounds are reported, and the network leaves the seed's "
                   "piece and comes back (%s rounds)" % (name, rounds))
-            check(unmatched is not None and unmatched[0][0] == 0,
-                  "%s: every cut end joined (%s unmatched)" % (name, unmatched))
-            check(got is not None and topology(got) == topology(reference),
-                  "%s: the built-in topology (%s vs %s)"
-                  % (name, topology(got) if got else None, topology(reference)))
-            if got is not None and topology(got) != topology(reference):
-                # Where they differ: ends and bifurcations with no counterpart within 4 voxels.
-                for what in ("end_points", "bifurcations"):
-                    print("  %s only distributed: %s; only built in: %s"
-                          % (what, unpaired(got[what], reference[what]),
-                             unpaired(reference[what], got[what])))
+            check_stitched_topology(name, got, reference, unmatched)
             if got is not None:
                 to_ref = farthest_point_voxels(got["points"], reference["points"], 1.0)
                 from_ref = farthest_point_voxels(reference["points"], got["points"], 1.0)
