@@ -1,6 +1,7 @@
 #include "vtouchDistributedStitchRun.h"
 
 #include "vtouchDistributedSeedCode.h"
+#include "vtouchDistributedUpstreamMaximum.h"
 #include "vtouchEveryRank.h"
 #include "vtouchPhantomGenerator.h"
 #include "vtouchPieceGrid.h"
@@ -110,6 +111,7 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   const Index& seed)
 {
   DistributedStitchRun run;
+  run.dims = dims;
   // The single run: the whole volume.
   const VoxelBox whole{ { 0, 0, 0 }, { dims[0] - 1, dims[1] - 1, dims[2] - 1 } };
   FloatImage::Pointer wholeImage = imageOf(voxels, dims, whole);
@@ -151,9 +153,11 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   run.root = roots.front();
   // Every rank: its grown piece coded with the single run's field (the filter's hook).
   const std::vector<PieceLayout> layout = layouts(dims, counts, ghost_voxels);
+  run.ssAndUpstream.resize(layout.size());
   run.pieces = onEveryRank<QSkeleton>(layout,
     [&](const PieceLayout& l, RankCollectives& c, QSkeleton& out)
     {
+      auto& values = run.ssAndUpstream[static_cast<std::size_t>(l.rank)];
       FloatImage::Pointer piece = imageOf(voxels, dims, l.mine());
       Filter::Pointer filter = coder(piece, lower);
       filter->SetGlobalSeedCode(
@@ -161,6 +165,17 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
         {
           DistributedSeedCode code(l, mask, { 1.0, 1.0, 1.0 });
           code.run(c, roots);
+          DistributedUpstreamMaximum up(l, mask, code.ss());
+          up.run(c);
+          const Index d = mask.dims();
+          mask.forEach(
+            [&](std::uint64_t lin)
+            {
+              const auto i = static_cast<std::int64_t>(lin);
+              const Index w = l.toWhole({ i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1]) });
+              values[l.wholeLinear(w)] = { code.ss()[mask.rank(lin)],
+                up.upstream_mm()[mask.rank(lin)] };
+            });
           return code.ss();
         });
       filter->Update();
@@ -187,6 +202,32 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   stitcher.coincidentPoint_mm = kCoincidentPointVoxels;
   run.stitched = stitcher.stitch(all, run.report);
   return run;
+}
+
+std::pair<float, float> ssAndUpstreamNear(const DistributedStitchRun& run,
+  std::size_t r,
+  const Vec3& p)
+{
+  const float inf = std::numeric_limits<float>::infinity();
+  std::pair<float, float> best{ inf, inf };
+  double nearest = 4.0; // squared: within 2 voxels
+  const Index c{ std::llround(p.x), std::llround(p.y), std::llround(p.z) };
+  const auto& values = run.ssAndUpstream[r];
+  for (std::int64_t dz = -2; dz <= 2; ++dz)
+    for (std::int64_t dy = -2; dy <= 2; ++dy)
+      for (std::int64_t dx = -2; dx <= 2; ++dx)
+      {
+        const Index q{ c[0] + dx, c[1] + dy, c[2] + dz };
+        const auto it = values.find(q[0] + run.dims[0] * (q[1] + run.dims[1] * q[2]));
+        const double d2 = (Vec3{ double(q[0]), double(q[1]), double(q[2]) } - p)
+                            .dot(Vec3{ double(q[0]), double(q[1]), double(q[2]) } - p);
+        if (it != values.end() && it->second.first != inf && d2 < nearest)
+        {
+          nearest = d2;
+          best = it->second;
+        }
+      }
+  return best;
 }
 
 double farthestPoint_mm(const QSkeleton& a,

@@ -12,6 +12,8 @@
 #include "vtouchSkeletonStitcher.h"
 
 #include <array>
+#include <map>
+#include <utility>
 #include <cstdint>
 #include <vector>
 
@@ -26,7 +28,17 @@ struct DistributedStitchRun
   StitchReport report;                ///< what the stitch did
   PieceOwnership ownership;           ///< the executive's split
   std::array<std::int64_t, 3> root{}; ///< the single run's (first) root voxel
+  std::array<std::int64_t, 3> dims{}; ///< the volume's voxels per axis
+  /// Per rank, the global field and DistributedUpstreamMaximum's U on its held vessel voxels, by
+  /// whole-volume linear index (computed in rounds beside the field).
+  std::vector<std::map<std::int64_t, std::pair<float, float>>> ssAndUpstream;
 };
+
+/// The global field's SS and U (mm) of rank `r`'s vessel voxel nearest `p` within its held box
+/// (1 mm voxels at 0); {inf, inf} when none lies within 2 voxels.
+std::pair<float, float> ssAndUpstreamNear(const DistributedStitchRun& run,
+  std::size_t r,
+  const Vec3& p);
 
 /// `spec`'s volume thresholded at `lower` (VesselCenterline: AutomaticIntensityRange off), split
 /// as the executive splits it into `counts` pieces, each grown by `ghost_voxels`. `seeded`: the
