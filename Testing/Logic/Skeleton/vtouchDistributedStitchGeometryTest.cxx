@@ -276,6 +276,14 @@ TEST(DistributedStitchGeometry, DISABLED_AVolumeFromAFile)
   }
   const test::DistributedStitchRun run = test::runDistributedStitch(voxels, dims, 500.0, split, 73);
   expectDeparturesAreTheOwnersCoding("volume", run);
+  for (std::size_t r = 0; r < run.upstreamRounds.size(); ++r)
+  {
+    std::printf("rank %zu: DistributedUpstreamMaximum %d rounds, %llu voxels reported, %zu held\n",
+      r,
+      run.upstreamRounds[r].rounds,
+      static_cast<unsigned long long>(run.upstreamRounds[r].reportedVoxels),
+      run.ssAndUpstream[r].size());
+  }
 }
 
 } // namespace

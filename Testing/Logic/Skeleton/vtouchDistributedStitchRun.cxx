@@ -154,6 +154,7 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   // Every rank: its grown piece coded with the single run's field (the filter's hook).
   const std::vector<PieceLayout> layout = layouts(dims, counts, ghost_voxels);
   run.ssAndUpstream.resize(layout.size());
+  run.upstreamRounds.resize(layout.size());
   run.pieces = onEveryRank<QSkeleton>(layout,
     [&](const PieceLayout& l, RankCollectives& c, QSkeleton& out)
     {
@@ -166,7 +167,7 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
           DistributedSeedCode code(l, mask, { 1.0, 1.0, 1.0 });
           code.run(c, roots);
           DistributedUpstreamMaximum up(l, mask, code.ss());
-          up.run(c);
+          run.upstreamRounds[static_cast<std::size_t>(l.rank)] = up.run(c);
           const Index d = mask.dims();
           mask.forEach(
             [&](std::uint64_t lin)

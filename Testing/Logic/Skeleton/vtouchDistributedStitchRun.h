@@ -9,6 +9,7 @@
 
 #include "vtouchPhantomSpec.h"
 #include "vtouchQSkeleton.h"
+#include "vtouchRoundsOutcome.h"
 #include "vtouchSkeletonStitcher.h"
 
 #include <array>
@@ -32,6 +33,7 @@ struct DistributedStitchRun
   /// Per rank, the global field and DistributedUpstreamMaximum's U on its held vessel voxels, by
   /// whole-volume linear index (computed in rounds beside the field).
   std::vector<std::map<std::int64_t, std::pair<float, float>>> ssAndUpstream;
+  std::vector<RoundsOutcome> upstreamRounds; ///< per rank, DistributedUpstreamMaximum's rounds
 };
 
 /// The global field's SS and U (mm) of rank `r`'s vessel voxel nearest `p` within its held box
