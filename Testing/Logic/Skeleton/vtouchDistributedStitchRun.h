@@ -1,6 +1,7 @@
 // The filter's distributed run without MPI (issue 19 item 2, h19q): each rank, a thread, codes
 // its grown piece of a phantom volume with VoxelCodingSkeletonFilter and the single run's SS
-// field (DistributedSeedCode from the single run's root, as the filter's global-field hook),
+// field (DistributedSeedCode from the single run's root, as the filter's global-field hook; and
+// DistributedUpstreamMaximum's U beside it, the key the tip order would need),
 // clips it to its owned box and the overlap band (SkeletonClipper, kOverlapBandVoxels) and the
 // pieces are stitched (SkeletonStitcher, configured as DistributedCenterline::gatherAndStitch).
 // What the geometry tests compare with the single run: the stitched skeleton and, to tell a
@@ -13,9 +14,9 @@
 #include "vtouchSkeletonStitcher.h"
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <utility>
-#include <cstdint>
 #include <vector>
 
 namespace vtouch::test
