@@ -1,5 +1,5 @@
-// The farthest tip above every vessel voxel, across pieces (issue 19 item 2, h19q): the key a
-// piece needs to order its tips as the single run does.
+// The farthest tip above every vessel voxel, across pieces (issue 19 item 2, h19q): a candidate
+// key for ordering a piece's tips as the single run does; right on trees, not on loops (below).
 //
 // Why. The voxel coder traces its tips farthest first (TraceStage: clusters without higher
 // neighbours, by SS band); the first trace through a junction is the path that runs through it,
@@ -9,12 +9,13 @@
 // It may then trace another vessel through the junction first: on ClientServer.
 // DistributedExtraction's Y on 4 ranks that moves 4 points by up to 0.581 voxel, on the 256^3
 // scaling tree by up to 1.66 voxel (Docs/CLIENT-SERVER.md, "Where the distributed geometry
-// departs"). The key of a cut tip that reproduces the single run's order is the SS of the
-// farthest tip whose trace enters the piece there. For a voxel v: U(v), the largest SS on a path
-// from v along which SS rises at every step (26-neighbours); at a tip of the single run (a local
-// maximum) U is its own SS, so ordering by U changes nothing there. Measured with U from the
-// whole volume as an oracle (vtouchDistributedStitchGeometryTest, the tip order replaced): the
-// Y on 4 pieces goes to 0.000 voxel, the 256^3 tree on 2 pieces from 1.660 to 0.767 voxel.
+// departs"). For a voxel v: U(v), the largest SS on a path from v along which SS rises at every
+// step (26-neighbours); at a tip of the single run (a local maximum) U is its own SS. Tips
+// ordered by U, wired through a pvserver (tried, not kept): the Y on 4 ranks 0.000 voxel, the
+// tree 0.767; but the seeded ring (a loop) lost a bifurcation: both legs rise to where the
+// fronts meet, so two cut tips get one key, while the single run descends one leg only. The
+// key the coder needs follows the descent (SkeletonTracer::descend's steps), not every rising
+// step; these rounds carry over to it, the step does not.
 //
 // How, exactly. U is a maximum over rising paths, so it is a fixed point of
 // U(v) = max(SS(v), U(w) for every neighbour w with SS(w) > SS(v)), reached from U = SS by
