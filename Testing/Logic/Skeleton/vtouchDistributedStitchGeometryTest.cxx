@@ -1,0 +1,290 @@
+// The distributed run's geometry against the single run (issue 19 item 2, h19q): the filter's
+// distributed path with ranks as threads (vtouchDistributedStitchRun.h: the global SS field,
+// the clip to the owned box and its band, the stitch) on ClientServer.DistributedExtraction's Y
+// and ClientServer.VesselAlongPieceFace's tubes; each rank's own skeleton and the stitched one
+// compared point by point with the single run's (as vtouch_skeleton_graph does through a
+// pvserver: these reproduce the pvserver's numbers, 0.581 and 0.121 voxel).
+//
+// Asserted: where the stitched skeleton departs from the single run by more than 0.1 voxel, the
+// rank owning the point coded it so (the stitch adds no departure of its own), and the pieces
+// add none to what the global field gives on one piece; and the key that would order the Y's
+// tips as the single run does (DistributedUpstreamMaximum's U, in rounds) ranks rank 2's cut tip
+// where the single run ranks the tip beyond it. Printed, not asserted: the departures
+// themselves and their causes (Docs/CLIENT-SERVER.md, "Where the distributed geometry departs"):
+// - the Y on 4 pieces: a rank whose grown piece cuts a vessel orders the cut's tip by its own
+//   SS, not by the single run's tip beyond, so it traces another vessel through the junction
+//   (TraceStage's farthest-first order; 0.581 voxel);
+// - the tubes along a face: the coder numbers SS clusters in its visiting order (the bucket
+//   queue's in the single run, SS then index with the global field), which breaks ties between
+//   tips of one band; one tube end moves 0.121 voxel, on one piece as on two.
+#include "vtouchDistributedStitchRun.h"
+
+#include "vtouchPieceOwnership.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace vtouch
+{
+namespace
+{
+constexpr double kTolerance_voxels = 0.1; // the issue's 0.1 voxel (1 mm voxels here)
+
+PhantomSpec phantom128(PhantomShape shape)
+{
+  PhantomSpec spec;
+  spec.shape = shape;
+  spec.dimensions = { 128, 128, 128 };
+  spec.radiusFraction = 0.025; // 3.2 voxels: ClientServer.DistributedExtraction's
+  return spec;
+}
+
+/// The filter's ghost margin for LargestVesselRadius `radius_mm` (1 mm voxels).
+int ghostFor(double radius_mm)
+{
+  GhostMarginRule rule;
+  rule.largestRadius_mm = radius_mm;
+  return rule.voxels({ 1.0, 1.0, 1.0 });
+}
+
+double nearest_mm(const Vec3& p, const QSkeleton& s)
+{
+  double best = 1e300;
+  for (const SkeletonPath& path : s.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      best = std::min(best, (p - q.position_World_mm).norm());
+    }
+  }
+  return best;
+}
+
+/// Every stitched point beyond the tolerance from the single run is a point of its owner's own
+/// skeleton (the stitch moved nothing there); printed with its distance and owner.
+void expectDeparturesAreTheOwnersCoding(const char* scene, const test::DistributedStitchRun& run)
+{
+  int departing = 0;
+  for (const SkeletonPath& path : run.stitched.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      const Vec3& p = q.position_World_mm;
+      const double d = nearest_mm(p, run.single);
+      if (d <= kTolerance_voxels)
+      {
+        continue;
+      }
+      ++departing;
+      const int owner = run.ownership.owner(p);
+      ASSERT_GE(owner, 0);
+      const double own = nearest_mm(p, run.pieces[static_cast<std::size_t>(owner)]);
+      std::printf("%s: stitched point (%.2f, %.2f, %.2f) %.3f voxel from the single run, owned "
+                  "by rank %d, %.1e from its own skeleton\n",
+        scene,
+        p.x,
+        p.y,
+        p.z,
+        d,
+        owner,
+        own);
+      EXPECT_LE(own, 1e-9) << scene << ": a departure the stitch made, not rank " << owner;
+    }
+  }
+  std::printf("%s: %d stitched points beyond %.1f voxel; farthest %.3f / %.3f voxel (stitched "
+              "from single / single from stitched)\n",
+    scene,
+    departing,
+    kTolerance_voxels,
+    test::farthestPoint_mm(run.stitched, run.single),
+    test::farthestPoint_mm(run.single, run.stitched));
+}
+
+void expectSameNetwork(const test::DistributedStitchRun& run)
+{
+  EXPECT_EQ(run.stitched.paths.size(), run.single.paths.size());
+  EXPECT_EQ(test::freeEnds(run.stitched), test::freeEnds(run.single));
+  EXPECT_EQ(run.stitched.junctions.size(), run.single.junctions.size());
+  EXPECT_EQ(run.report.cutEndsUnmatched, 0);
+  EXPECT_EQ(run.report.pointsDropped, 0);
+}
+
+TEST(DistributedStitchGeometry, TheYOnTwoPiecesIsTheSingleRun)
+{
+  const test::DistributedStitchRun run = test::runDistributedStitch(
+    phantom128(PhantomShape::YBifurcation), 550.0, { 1, 1, 2 }, ghostFor(3.2));
+  expectSameNetwork(run);
+  EXPECT_GE(run.report.cutEndsJoined, 1); // a vessel crosses the face
+  EXPECT_LE(test::farthestPoint_mm(run.stitched, run.single), kTolerance_voxels);
+  EXPECT_LE(test::farthestPoint_mm(run.single, run.stitched), kTolerance_voxels);
+}
+
+TEST(DistributedStitchGeometry, TheYOnFourPiecesDepartsOnlyWhereARankCodedItSo)
+{
+  const test::DistributedStitchRun run = test::runDistributedStitch(
+    phantom128(PhantomShape::YBifurcation), 550.0, { 1, 2, 2 }, ghostFor(3.2));
+  expectSameNetwork(run);
+  expectDeparturesAreTheOwnersCoding("Y on 4 pieces", run);
+  // The cause, printed: which tip each run traced through the junction first (its path 0's
+  // free end away from the root).
+  const auto firstTip = [](const QSkeleton& s)
+  {
+    const Vec3& t = s.paths.front().points.back().position_World_mm;
+    return std::to_string(int(t.x)) + ", " + std::to_string(int(t.y)) + ", " +
+           std::to_string(int(t.z));
+  };
+  std::printf("first traced tip: single run (%s)", firstTip(run.single).c_str());
+  for (std::size_t r = 0; r < run.pieces.size(); ++r)
+  {
+    std::printf(", rank %zu (%s)", r, firstTip(run.pieces[r]).c_str());
+  }
+  std::printf("\n");
+}
+
+// The cause of the Y's departure and its key: rank 2's piece (y < 63 + 26, z >= 63 - 26) holds
+// the trunk's tip and cuts both branches at y = 89. By SS its tip at the cut of the far branch
+// (the single run's first tip, beyond the cut) ranks below the trunk's tip, so it traces the
+// trunk through the junction first; by DistributedUpstreamMaximum's U (computed in rounds) it
+// ranks above, as the single run orders them.
+TEST(DistributedStitchGeometry, TheUpstreamMaximumOrdersTheYsCutTipAsTheSingleRun)
+{
+  const test::DistributedStitchRun run = test::runDistributedStitch(
+    phantom128(PhantomShape::YBifurcation), 550.0, { 1, 2, 2 }, ghostFor(3.2));
+  const std::size_t rank2 = 2;
+  const SkeletonPath& through = run.pieces[rank2].paths.at(0); // traced first: to the trunk tip
+  ASSERT_GE(run.pieces[rank2].paths.size(), 2U);
+  const SkeletonPath& branch = run.pieces[rank2].paths[1]; // to the cut at y = 89
+  const Vec3 trunkTip = through.points.back().position_World_mm;
+  const Vec3 cutTip = branch.points.back().position_World_mm;
+  ASSERT_GT(cutTip.y, 85.0) << "rank 2's second path should end at its piece's face y = 89";
+  ASSERT_LT(trunkTip.y, 20.0) << "rank 2's first path should end at the trunk's tip";
+  const auto trunk = test::ssAndUpstreamNear(run, rank2, trunkTip);
+  const auto cut = test::ssAndUpstreamNear(run, rank2, cutTip);
+  // The single run's first tip: its path 0's free end away from the root.
+  const Vec3 farTip = run.single.paths.front().points.back().position_World_mm;
+  const auto far = test::ssAndUpstreamNear(run, 1, farTip); // rank 1 holds the far branch's end
+  // Near a path's end (the cap's centre, a radius back from the apex) U is the apex's SS: the
+  // tip's own key in the trace order.
+  std::printf("rank 2: trunk tip SS %.2f U %.2f; cut tip SS %.2f U %.2f; the single run's first "
+              "tip SS %.2f U %.2f\n",
+    trunk.first,
+    trunk.second,
+    cut.first,
+    cut.second,
+    far.first,
+    far.second);
+  EXPECT_GT(far.second, trunk.second); // the single run: the far branch first
+  EXPECT_LT(cut.first, trunk.first);   // rank 2 by SS: the trunk first (the departure)
+  EXPECT_GT(cut.second, trunk.second); // rank 2 by U: the far branch first
+  EXPECT_EQ(cut.second, far.second);   // the cut's key is the far tip's own, exactly
+}
+
+/// ClientServer.VesselAlongPieceFace's tubes (test_cs_vessel_along_face.py): radius 3, 1000
+/// inside, 0 outside, 128^3.
+std::vector<float> alongFaceVolume()
+{
+  using Line = std::vector<Vec3>;
+  std::vector<Line> lines;
+  const double offsets[5] = { -0.7, -0.3, 0.0, 0.3, 0.7 };
+  const double turns[5] = { 8.0, 118.0, 8.0, 118.0, 8.0 };
+  for (int k = 0; k < 5; ++k)
+  {
+    const double y = 14.0 + 19.0 * k, z = 63.0 + offsets[k];
+    lines.push_back({ { 14.0, y, z }, { 96.0, y, z }, { 112.0, y, turns[k] } });
+  }
+  lines.push_back({ { 56.0, 90.0, 63.7 }, { 44.0, 90.0, 92.0 } });
+  lines.push_back({ { 10.0, 116.0, 8.0 },
+    { 22.0, 116.0, 45.0 },
+    { 104.0, 116.0, 70.0 },
+    { 116.0, 116.0, 118.0 } });
+  const int n = 128;
+  std::vector<float> v(std::size_t(n) * n * n, 0.0f);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const Vec3 p{ double(i), double(j), double(k) };
+        bool inside = false;
+        for (std::size_t li = 0; li < lines.size(); ++li)
+          for (std::size_t s = 0; s + 1 < lines[li].size() && !inside; ++s)
+          {
+            const Line& l = lines[li];
+            const Vec3 ab = l[s + 1] - l[s];
+            const double t = std::clamp((p - l[s]).dot(ab) / ab.dot(ab), 0.0, 1.0);
+            inside = (p - (l[s] + ab * t)).norm() <= 3.0;
+          }
+        v[std::size_t(i + n * (j + n * k))] = inside ? 1000.0f : 0.0f;
+      }
+  return v;
+}
+
+TEST(DistributedStitchGeometry, VesselsAlongAFaceDepartOnlyAsTheGlobalFieldOnOnePiece)
+{
+  const std::vector<float> volume = alongFaceVolume();
+  const test::DistributedStitchRun two =
+    test::runDistributedStitch(volume, { 128, 128, 128 }, 550.0, { 1, 1, 2 }, ghostFor(3.0));
+  expectSameNetwork(two);
+  EXPECT_GE(two.report.duplicatesRemoved, 1); // the tubes along the face were sent twice
+  expectDeparturesAreTheOwnersCoding("tubes along a face, 2 pieces", two);
+  // The whole volume as one piece coded with the same field: what the pieces add to the global
+  // field's own coding is within the tolerance.
+  const test::DistributedStitchRun one =
+    test::runDistributedStitch(volume, { 128, 128, 128 }, 550.0, { 1, 1, 1 }, 0);
+  std::printf("one piece with the global field: %.3f / %.3f voxel from the single run\n",
+    test::farthestPoint_mm(one.stitched, one.single),
+    test::farthestPoint_mm(one.single, one.stitched));
+  EXPECT_LE(test::farthestPoint_mm(two.stitched, one.stitched), kTolerance_voxels);
+  EXPECT_LE(test::farthestPoint_mm(one.stitched, two.stitched), kTolerance_voxels);
+}
+
+/// A diagnostic, run by hand (not in CI: it reads a file): the departures of a volume written
+/// by Utilities/bench's scaling_bench.write_tree_nrrd (raw NRRD, uint16, 1 mm voxels):
+///   VESSELTOUCH_STITCH_VOLUME=tree.nrrd VESSELTOUCH_STITCH_SPLIT="1 2 2"
+///     vtouchDistributedStitchGeometryTests --gtest_also_run_disabled_tests
+///     --gtest_filter='*DISABLED_AVolumeFromAFile'
+/// (threshold 500, the ghost margin of LargestVesselRadius 0: 10 voxels, 73).
+TEST(DistributedStitchGeometry, DISABLED_AVolumeFromAFile)
+{
+  const char* path = std::getenv("VESSELTOUCH_STITCH_VOLUME");
+  ASSERT_NE(path, nullptr) << "set VESSELTOUCH_STITCH_VOLUME";
+  std::ifstream in(path, std::ios::binary);
+  ASSERT_TRUE(in) << path;
+  std::string line;
+  std::array<std::int64_t, 3> dims{ 0, 0, 0 };
+  while (std::getline(in, line) && !line.empty())
+  {
+    if (line.rfind("sizes:", 0) == 0)
+    {
+      std::istringstream(line.substr(6)) >> dims[0] >> dims[1] >> dims[2];
+    }
+  }
+  ASSERT_GT(dims[0] * dims[1] * dims[2], 0);
+  std::vector<std::uint16_t> raw(std::size_t(dims[0] * dims[1] * dims[2]));
+  in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * 2));
+  ASSERT_TRUE(in) << "short file";
+  const std::vector<float> voxels(raw.begin(), raw.end());
+  std::array<int, 3> split{ 1, 1, 2 };
+  if (const char* s = std::getenv("VESSELTOUCH_STITCH_SPLIT"))
+  {
+    std::istringstream(s) >> split[0] >> split[1] >> split[2];
+  }
+  const test::DistributedStitchRun run = test::runDistributedStitch(voxels, dims, 500.0, split, 73);
+  expectDeparturesAreTheOwnersCoding("volume", run);
+  for (std::size_t r = 0; r < run.upstreamRounds.size(); ++r)
+  {
+    std::printf("rank %zu: DistributedUpstreamMaximum %d rounds, %llu voxels reported, %zu held\n",
+      r,
+      run.upstreamRounds[r].rounds,
+      static_cast<unsigned long long>(run.upstreamRounds[r].reportedVoxels),
+      run.ssAndUpstream[r].size());
+  }
+}
+
+} // namespace
+} // namespace vtouch

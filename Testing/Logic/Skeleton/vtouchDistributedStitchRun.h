@@ -1,0 +1,76 @@
+// The filter's distributed run without MPI (issue 19 item 2, h19q): each rank, a thread, codes
+// its grown piece of a phantom volume with VoxelCodingSkeletonFilter and the single run's SS
+// field (DistributedSeedCode from the single run's root, as the filter's global-field hook; and
+// DistributedUpstreamMaximum's U beside it, the key the tip order would need),
+// clips it to its owned box and the overlap band (SkeletonClipper, kOverlapBandVoxels) and the
+// pieces are stitched (SkeletonStitcher, configured as DistributedCenterline::gatherAndStitch).
+// What the geometry tests compare with the single run: the stitched skeleton and, to tell a
+// coding cause from a stitching one, each rank's own unclipped skeleton.
+#pragma once
+
+#include "vtouchPhantomSpec.h"
+#include "vtouchQSkeleton.h"
+#include "vtouchRoundsOutcome.h"
+#include "vtouchSkeletonStitcher.h"
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace vtouch::test
+{
+
+struct DistributedStitchRun
+{
+  QSkeleton single;                   ///< the single run (the whole volume, unseeded or seeded)
+  std::vector<QSkeleton> pieces;      ///< each rank's own skeleton, world frame, unclipped
+  QSkeleton stitched;                 ///< the pieces clipped and stitched
+  StitchReport report;                ///< what the stitch did
+  PieceOwnership ownership;           ///< the executive's split
+  std::array<std::int64_t, 3> root{}; ///< the single run's (first) root voxel
+  std::array<std::int64_t, 3> dims{}; ///< the volume's voxels per axis
+  /// Per rank, the global field and DistributedUpstreamMaximum's U on its held vessel voxels, by
+  /// whole-volume linear index (computed in rounds beside the field).
+  std::vector<std::map<std::int64_t, std::pair<float, float>>> ssAndUpstream;
+  std::vector<RoundsOutcome> upstreamRounds; ///< per rank, DistributedUpstreamMaximum's rounds
+};
+
+/// The global field's SS and U (mm) of rank `r`'s vessel voxel nearest `p` within its held box
+/// (1 mm voxels at 0); {inf, inf} when none lies within 2 voxels.
+std::pair<float, float> ssAndUpstreamNear(const DistributedStitchRun& run,
+  std::size_t r,
+  const Vec3& p);
+
+/// `spec`'s volume thresholded at `lower` (VesselCenterline: AutomaticIntensityRange off), split
+/// as the executive splits it into `counts` pieces, each grown by `ghost_voxels`. `seeded`: the
+/// single run and the field from `seed` (whole voxel index, a vessel voxel); else the single
+/// run's automatic root.
+DistributedStitchRun runDistributedStitch(const PhantomSpec& spec,
+  double lower,
+  const std::array<int, 3>& counts,
+  int ghost_voxels,
+  bool seeded = false,
+  const std::array<std::int64_t, 3>& seed = {});
+
+/// The same on any volume: `voxels` (x fastest) of `dims` voxels of 1 mm at 0.
+DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
+  const std::array<std::int64_t, 3>& dims,
+  double lower,
+  const std::array<int, 3>& counts,
+  int ghost_voxels,
+  bool seeded = false,
+  const std::array<std::int64_t, 3>& seed = {});
+
+/// The largest distance from a point of `a` to the nearest point of `b`, mm; only points of `a`
+/// farther than `awayFrom_mm` from `avoid` count (a root's neighbourhood; `awayFrom_mm` 0: all).
+double farthestPoint_mm(const QSkeleton& a,
+  const QSkeleton& b,
+  const Vec3& avoid = {},
+  double awayFrom_mm = 0.0);
+
+/// Free vessel ends (neither attached nor a parent point) and junction parent points.
+int freeEnds(const QSkeleton& s);
+
+} // namespace vtouch::test
