@@ -282,6 +282,14 @@ TEST(DistributedStitchGeometry, DISABLED_AVolumeFromAFile)
   }
   const test::DistributedStitchRun run = test::runDistributedStitch(voxels, dims, 500.0, split, 73);
   expectDeparturesAreTheOwnersCoding("volume", run);
+  std::printf("stitch: %d cut ends joined, %d unmatched, %d duplicates removed\n",
+    run.report.cutEndsJoined,
+    run.report.cutEndsUnmatched,
+    run.report.duplicatesRemoved);
+  for (const std::string& note : run.report.notes)
+  {
+    std::printf("  %s\n", note.c_str());
+  }
   for (std::size_t r = 0; r < run.upstreamRounds.size(); ++r)
   {
     std::printf("rank %zu: DistributedUpstreamMaximum %d rounds, %llu voxels reported, %zu held\n",
