@@ -12,7 +12,12 @@ polyline, and the stitch's field arrays (Stitch*). The scaling bench's tree:
 the run is seeded (UseSeedPoint: the distributed run codes with the global SS code, its rounds
 printed as SeedCodeRounds); without, the distributed run codes with the single run's automatic
 roots (RootChoiceRounds, RootChoicePropagations, RootChoiceComponents, RootChoiceRoots: whole
-voxel indices, to seed a 1-rank run there with --seed). A measurement, not a test: nothing is asserted.
+voxel indices, to seed a 1-rank run there with --seed). Each run after the first also prints the
+farthest point between its skeleton and the first run's, both ways (voxels: 1 mm voxels), e.g.
+`--ranks 1 2 4`: the distributed runs against the single run. With --phantom SHAPE the volume is
+first written as ClientServer.DistributedExtraction writes its phantoms (the built-in
+VesselPhantom, 128^3, RadiusFraction 0.025; SHAPE 0 = the ring, 4 = the Y, 5 = the tree; use
+--lower 550). A measurement, not a test: nothing is asserted.
 """
 
 import argparse
@@ -21,14 +26,16 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [HERE, os.path.dirname(HERE)]
-from vtouch_pvserver import ParallelServer  # noqa: E402
-from vtouch_skeleton_graph import graph  # noqa: E402
+from vtouch_pvserver import ParallelServer, write_float_nrrd  # noqa: E402
+from vtouch_skeleton_graph import farthest_point_voxels, graph  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
 
 
-def measure(volume, ranks, lower, upper, seed=None):
+def measure(volume, ranks, lower, upper, seed=None, first=None):
+    """Runs and prints one rank count; returns its graph. `first`: an earlier run's graph to
+    measure the farthest point against."""
     server = ParallelServer(ranks=ranks)
     server.start()
     try:
@@ -60,9 +67,24 @@ def measure(volume, ranks, lower, upper, seed=None):
               "polyline %d points; %s" % (ranks, data.GetNumberOfCells(), data.GetNumberOfPoints(),
                                           g["ends"], len(g["bifurcations"]), g["cycles"],
                                           shortest, stitch))
+        if first is not None:
+            worst = max(farthest_point_voxels(g["points"], first["points"], 1.0),
+                        farthest_point_voxels(first["points"], g["points"], 1.0))
+            print("ranks %d: farthest point from the first run's skeleton, both ways: %.3f voxel"
+                  % (ranks, worst))
         simple.Disconnect()
+        return g
     finally:
         server.stop()
+
+
+def write_phantom(path, shape):
+    """The ClientServer.DistributedExtraction phantom `shape` as a float NRRD at `path`."""
+    simple.LoadPlugin(os.environ["VESSELTOUCH_PLUGIN"], remote=False, ns=globals())
+    phantom = VesselPhantom(Dimensions=[128, 128, 128], RadiusFraction=0.025,  # noqa: F821
+                            Shape=shape)
+    write_float_nrrd(path, sm.Fetch(phantom))
+    simple.Delete(phantom)
 
 
 def main():
@@ -73,13 +95,19 @@ def main():
     parser.add_argument("--upper", type=float, default=65535.0)
     parser.add_argument("--seed", type=float, nargs=3, default=None,
                         help="a seed point (world mm): the seeded mode")
+    parser.add_argument("--phantom", type=int, default=None,
+                        help="first write the built-in phantom of this Shape to --volume")
     args = parser.parse_args()
-    if not os.path.exists(args.volume):
-        sys.exit("no volume at %s" % args.volume)
     if "VESSELTOUCH_PLUGIN" not in os.environ:
         sys.exit("set VESSELTOUCH_PLUGIN to the plugin's VesselTouch.so")
+    if args.phantom is not None:
+        write_phantom(args.volume, args.phantom)
+    if not os.path.exists(args.volume):
+        sys.exit("no volume at %s" % args.volume)
+    first = None
     for ranks in args.ranks:
-        measure(args.volume, ranks, args.lower, args.upper, args.seed)
+        g = measure(args.volume, ranks, args.lower, args.upper, args.seed, first)
+        first = g if first is None else first
 
 
 if __name__ == "__main__":
