@@ -17,7 +17,7 @@ farthest point between its skeleton and the first run's, both ways (voxels: 1 mm
 `--ranks 1 2 4`: the distributed runs against the single run. With --phantom SHAPE the volume is
 first written as ClientServer.DistributedExtraction writes its phantoms (the built-in
 VesselPhantom, 128^3, RadiusFraction 0.025; SHAPE 0 = the ring, 4 = the Y, 5 = the tree; use
---lower 550). A measurement, not a test: nothing is asserted.
+--lower 550 --largest-radius 3.2, the test's threshold and ghost margin). A measurement, not a test: nothing is asserted.
 """
 
 import argparse
@@ -33,7 +33,7 @@ from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
 
 
-def measure(volume, ranks, lower, upper, seed=None, first=None):
+def measure(volume, ranks, lower, upper, seed=None, first=None, radius=None):
     """Runs and prints one rank count; returns its graph. `first`: an earlier run's graph to
     measure the farthest point against."""
     server = ParallelServer(ranks=ranks)
@@ -44,6 +44,8 @@ def measure(volume, ranks, lower, upper, seed=None, first=None):
         centerline = simple.VesselCenterline(Input=reader, AutomaticIntensityRange=0,
                                              LowerThreshold=lower, UpperThreshold=upper,
                                              DistributedExtraction=1 if ranks > 1 else 0)
+        if radius:
+            centerline.LargestVesselRadius = radius  # the ghost margin follows it
         if seed:
             centerline.UseSeedPoint = 1
             centerline.SeedPoint = seed
@@ -95,6 +97,8 @@ def main():
     parser.add_argument("--upper", type=float, default=65535.0)
     parser.add_argument("--seed", type=float, nargs=3, default=None,
                         help="a seed point (world mm): the seeded mode")
+    parser.add_argument("--largest-radius", type=float, default=None,
+                        help="LargestVesselRadius (mm; ClientServer.DistributedExtraction: 3.2)")
     parser.add_argument("--phantom", type=int, default=None,
                         help="first write the built-in phantom of this Shape to --volume")
     args = parser.parse_args()
@@ -106,7 +110,8 @@ def main():
         sys.exit("no volume at %s" % args.volume)
     first = None
     for ranks in args.ranks:
-        g = measure(args.volume, ranks, args.lower, args.upper, args.seed, first)
+        g = measure(args.volume, ranks, args.lower, args.upper, args.seed, first,
+                    args.largest_radius)
         first = g if first is None else first
 
 
