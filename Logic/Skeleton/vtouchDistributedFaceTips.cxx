@@ -26,9 +26,9 @@ constexpr std::int64_t kCrossed = 1;
 
 /// How far a face tip's own descent is searched for a crossing chain: this many bands plus two
 /// local radii below its start (project rule: the slab a chain crosses where it enters the piece
-/// lies within a radius of the face, and a chain steps at most one band per voxel on a grid whose
-/// band width is the largest spacing; a few bands more absorb the face's cut slabs). Beyond it a
-/// chain met on the descent came from elsewhere (a branch joining below the face).
+/// lies within a radius of the face, and a step of at most sqrt(3) voxels skips at most one band
+/// of the largest spacing; a band more absorbs the face's cut slabs). Beyond it a chain met on
+/// the descent came from elsewhere (a branch joining below the face).
 constexpr double kAnswerWindow_bands = 3.0;
 
 CollectiveRounds roundsOfFaceTips()

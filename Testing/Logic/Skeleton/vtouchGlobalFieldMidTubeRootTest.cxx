@@ -13,6 +13,7 @@
 #include "vtouchDistributedFaceTips.h"
 #include "vtouchDistributedSeedCode.h"
 #include "vtouchEveryRank.h"
+#include "vtouchPhantomGenerator.h"
 #include "vtouchPieceGrid.h"
 #include "vtouchSkeletonStageTestSupport.h"
 
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <tuple>
 
@@ -236,6 +238,34 @@ TEST(VoxelCoderGlobalField, WithoutTheFaceTipsTheRootsRankDeparts)
     EXPECT_GT(std::max(d[0].nearRoot_voxels, d[1].nearRoot_voxels), 0.5);
     EXPECT_LE(std::max(d[0].awayFromRoot_voxels, d[1].awayFromRoot_voxels), kTolerance_voxels);
   }
+}
+
+/// ClientServer.DistributedExtraction's Y (the built-in phantom, 128^3, radius fraction 0.025,
+/// thresholded at 550 as the test does).
+std::function<bool(const Point_mm&)> testY()
+{
+  PhantomSpec spec;
+  spec.shape = PhantomShape::YBifurcation;
+  spec.dimensions = { 128, 128, 128 };
+  spec.radiusFraction = 0.025;
+  const PhantomGenerator generator(spec);
+  auto voxels = std::make_shared<std::vector<float>>(std::size_t{ 128 } * 128 * 128);
+  if (!generator.ok() || !generator.fill(voxels->data()))
+  {
+    ADD_FAILURE() << "the Y phantom: " << generator.error();
+  }
+  return [voxels](const Point_mm& p)
+  {
+    const auto i = static_cast<std::size_t>(p[0] + 128 * (p[1] + 128 * p[2]));
+    return (*voxels)[i] >= 550.0F;
+  };
+}
+
+TEST(VoxelCoderGlobalField, TheYOnFourPiecesGivesTheSingleRunsPoints)
+{
+  // The Y from its automatic root (24, 107, 79), a branch end, on 2 x 2 pieces in y and z: the
+  // pvserver's 4 ranks moved 4 of its points by 0.581 voxel before the face tips' answers.
+  expectTheSingleRunsPoints("Y", testY(), { 24, 107, 79 }, { 1, 2, 2 });
 }
 
 TEST(VoxelCoderGlobalField, AMidTubeRootOnTheAxisGivesTheSingleRunsPoints)
