@@ -1,6 +1,8 @@
 // Voxel coding stage 4: back-tracing from the tips.
 #include "vtouchSkeletonTraceStage.h"
 
+#include "vtouchDistributedFaceTips.h"
+
 #include "vtouchSkeletonClusterStage.h"
 #include "vtouchSkeletonPaths.h"
 
@@ -17,90 +19,114 @@ namespace
 constexpr float kInf = VoxelCodes::kInf;
 } // namespace
 
-TraceStage::TraceStage(SkeletonTracer& t, double minimumBranchLength_radii, bool rootBandOnly)
+TraceStage::TraceStage(SkeletonTracer& t,
+  double minimumBranchLength_radii,
+  bool rootBandOnly,
+  const std::vector<std::int64_t>* faceTips)
   : tracer(t)
   , minimumBranchLength(minimumBranchLength_radii)
   , onlyRootBandIsRoot(rootBandOnly)
+  , faceTipBands(faceTips)
 {
 }
 
 std::size_t TraceStage::run()
 {
   const std::vector<Cluster>& clusters = tracer.graph.clusters; // path, point change as it goes
-  const VoxelGrid& grid = tracer.grid;
   const RawSkeleton& out = tracer.out;
-  // Tips: clusters without higher neighbours (local maxima of the SS code), farthest first.
-  std::vector<std::uint32_t> tips;
+  // Tips: clusters without higher neighbours (local maxima of the SS code), farthest first. With
+  // the face tips' answers, a face tip ranks by the band of the single run's tip beyond the face,
+  // and one with no tip beyond waits for the end (a loop's second side).
+  std::vector<std::uint32_t> tips, loopSides;
   std::uint32_t root = 0;
+  const auto answer = [&](std::uint32_t c)
+  { return faceTipBands ? (*faceTipBands)[c] : DistributedFaceTips::kNotAFaceTip; };
   for (std::uint32_t c = 0; c < clusters.size(); ++c)
   {
     if (clusters[c].higher.empty() && clusters[c].band > 0)
     {
-      tips.push_back(c);
+      (answer(c) == DistributedFaceTips::kNoTipBeyond ? loopSides : tips).push_back(c);
     }
     if (clusters[c].band == 0)
     {
       root = c;
     }
   }
+  const auto rank = [&](std::uint32_t c)
+  { return answer(c) >= 0 ? answer(c) : static_cast<std::int64_t>(clusters[c].band); };
   std::sort(tips.begin(),
     tips.end(),
     [&](std::uint32_t a, std::uint32_t b)
-    { return clusters[a].band != clusters[b].band ? clusters[a].band > clusters[b].band : a < b; });
+    { return rank(a) != rank(b) ? rank(a) > rank(b) : a < b; });
   const std::size_t firstPath = out.paths.size();
   for (std::uint32_t tip : tips)
   {
-    if (clusters[tip].path >= 0)
-    {
-      continue;
-    }
-    const std::size_t patience = tracer.patienceFor(clusters[tip]);
-    Trace t = tracer.descend(ClusterStage::tipStart(grid, clusters[tip]), kInf, patience);
-    const bool atRoot =
-      !onlyRootBandIsRoot ||
-      (!t.voxels.empty() && tracer.codes.ss[grid.mask.rank(t.voxels.back())] < grid.bandWidth);
-    if (onlyRootBandIsRoot && t.path < 0 && atRoot)
-    {
-      // The global field may hold several roots (the automatic roots across the ranks: one per
-      // component, issue 19 item 2): join the root band's cluster this trace reached, when a
-      // path already represents it (the first trace to reach it becomes that path). The single
-      // run's rule below joins the last root cluster, which holds one root per coded component.
-      const std::uint32_t reached =
-        tracer.graph.clusterOfRank(static_cast<std::uint32_t>(grid.mask.rank(t.voxels.back())));
-      if (clusters[reached].band == 0 && clusters[reached].path >= 0)
-      {
-        t.path = clusters[reached].path; // reached its root beside the first path there
-        t.point = clusters[reached].point;
-      }
-    }
-    else if (t.path < 0 && out.paths.size() > firstPath && atRoot)
-    {
-      t.path = clusters[root].path; // reached the root beside the first path
-      t.point = clusters[root].point;
-    }
-    if (t.voxels.empty())
-    {
-      continue;
-    }
-    if (t.path >= 0)
-    {
-      double radius = tracer.nearbyRadius(t.path, t.point);
-      const double tipToJunction =
-        t.length + distance(grid.centerOf(t.voxels.back()), out.paths[t.path].center_mm[t.point]);
-      radius = std::max(radius, endCapRadius(out.paths[t.path], t.point, tipToJunction));
-      if (tipToJunction < std::max(minimumBranchLength * radius, 2.0 * grid.bandWidth))
-      {
-        continue; // a spur
-      }
-      joinAlongBranchAxis(t, radius);
-    }
-    else if (t.voxels.size() < 2)
-    {
-      continue;
-    }
-    tracer.emitPath(t, clusters[tip].onBorder, -1, -1);
+    traceTip(tip, false, firstPath, root);
+  }
+  for (std::uint32_t side : loopSides)
+  {
+    traceTip(side, true, firstPath, root);
   }
   return out.paths.size() - firstPath;
+}
+
+void TraceStage::traceTip(std::uint32_t tip,
+  bool asLoopSide,
+  std::size_t firstPath,
+  std::uint32_t root)
+{
+  const std::vector<Cluster>& clusters = tracer.graph.clusters;
+  const VoxelGrid& grid = tracer.grid;
+  const RawSkeleton& out = tracer.out;
+  if (clusters[tip].path >= 0)
+  {
+    return;
+  }
+  const std::size_t patience = tracer.patienceFor(clusters[tip]);
+  Trace t = tracer.descend(ClusterStage::tipStart(grid, clusters[tip]), kInf, patience);
+  const bool atRoot =
+    !onlyRootBandIsRoot ||
+    (!t.voxels.empty() && tracer.codes.ss[grid.mask.rank(t.voxels.back())] < grid.bandWidth);
+  if (onlyRootBandIsRoot && t.path < 0 && atRoot)
+  {
+    // The global field may hold several roots (the automatic roots across the ranks: one per
+    // component, issue 19 item 2): join the root band's cluster this trace reached, when a
+    // path already represents it (the first trace to reach it becomes that path). The single
+    // run's rule below joins the last root cluster, which holds one root per coded component.
+    const std::uint32_t reached =
+      tracer.graph.clusterOfRank(static_cast<std::uint32_t>(grid.mask.rank(t.voxels.back())));
+    if (clusters[reached].band == 0 && clusters[reached].path >= 0)
+    {
+      t.path = clusters[reached].path; // reached its root beside the first path there
+      t.point = clusters[reached].point;
+    }
+  }
+  else if (t.path < 0 && out.paths.size() > firstPath && atRoot)
+  {
+    t.path = clusters[root].path; // reached the root beside the first path
+    t.point = clusters[root].point;
+  }
+  if (t.voxels.empty())
+  {
+    return;
+  }
+  if (t.path >= 0 && !asLoopSide)
+  {
+    double radius = tracer.nearbyRadius(t.path, t.point);
+    const double tipToJunction =
+      t.length + distance(grid.centerOf(t.voxels.back()), out.paths[t.path].center_mm[t.point]);
+    radius = std::max(radius, endCapRadius(out.paths[t.path], t.point, tipToJunction));
+    if (tipToJunction < std::max(minimumBranchLength * radius, 2.0 * grid.bandWidth))
+    {
+      return; // a spur
+    }
+    joinAlongBranchAxis(t, radius);
+  }
+  else if (t.path < 0 && t.voxels.size() < 2)
+  {
+    return;
+  }
+  tracer.emitPath(t, clusters[tip].onBorder, -1, -1);
 }
 
 void TraceStage::joinAlongBranchAxis(Trace& t, double junctionRadius)

@@ -4,6 +4,8 @@
 #include "vtouchSkeletonTracer.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace vtouch
 {
@@ -29,12 +31,25 @@ public:
   /// path at the root. A trace that reaches the root band joins the root-band cluster it reached
   /// (the field may hold several roots: the automatic roots across the ranks, one per
   /// component). Off (the single run): every trace ends at the root.
-  TraceStage(SkeletonTracer& tracer, double minimumBranchLength, bool onlyRootBandIsRoot = false);
+  ///
+  /// `faceTipBands` (the global field on several ranks, VoxelCodingParameters::faceTipBands; per
+  /// cluster, or null): a face tip (a local maximum of SS only because the piece ends there) is
+  /// ordered among the tips by the band of the single run's tip beyond the face instead of its
+  /// own; one with no tip beyond (DistributedFaceTips::kNoTipBeyond) is the side the single run
+  /// reaches only by closing a loop: it is traced after every tip as LoopStage::closeLoops' side
+  /// B is, attached where it touches (no spur test, no joinAlongBranchAxis).
+  TraceStage(SkeletonTracer& tracer,
+    double minimumBranchLength,
+    bool onlyRootBandIsRoot = false,
+    const std::vector<std::int64_t>* faceTipBands = nullptr);
 
   /// Traces the component's tips; returns the number of paths it emitted.
   std::size_t run();
 
 private:
+  /// Traces tip cluster `tip`; `asLoopSide`: attached where it touches, no spur test.
+  void traceTip(std::uint32_t tip, bool asLoopSide, std::size_t firstPath, std::uint32_t root);
+
   /// A branch trace that reaches the skeleton across a thick junction touches it early, on the
   /// crotch side: the corner is cut. Extend the branch's own axis (its centres between `far` and
   /// `near` radii of the touch) to the parent path and attach there, dropping the trace voxels
@@ -45,6 +60,7 @@ private:
   SkeletonTracer& tracer;
   double minimumBranchLength; // in local radii
   bool onlyRootBandIsRoot;
+  const std::vector<std::int64_t>* faceTipBands;
 };
 
 } // namespace skeleton

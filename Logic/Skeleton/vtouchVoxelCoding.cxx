@@ -61,6 +61,8 @@ struct VoxelCoder::Impl
   skeleton::SeedCodeStage seedCode;
   skeleton::ClusterStage clusterStage;
   skeleton::SkeletonTracer tracer;
+  /// The face tips' answers (VoxelCodingParameters::faceTipBands), per cluster; empty without.
+  std::vector<std::int64_t> faceTipBands;
   // Last: destroyed first, its thread joined before the arrays it writes go.
   skeleton::BoundaryCodeStage boundaryCode;
 };
@@ -100,6 +102,10 @@ void VoxelCoder::Impl::codeGlobalField()
     handleComponent({}, false);
     markComponent();
   }
+  else if (par.faceTipBands)
+  {
+    par.faceTipBands(tracer); // collective: joins the face tips' rounds without clusters
+  }
 }
 
 void VoxelCoder::Impl::handleComponent(const std::vector<std::uint32_t>& sources, bool chooseRoot)
@@ -110,6 +116,10 @@ void VoxelCoder::Impl::handleComponent(const std::vector<std::uint32_t>& sources
   }
   boundaryCode.await(); // the clusters read bs
   clusterStage.build();
+  if (par.faceTipBands && par.globalSs_mm)
+  {
+    faceTipBands = par.faceTipBands(tracer); // the global field on several ranks: collective
+  }
   if (chooseRoot)
   {
     if (const std::optional<std::uint32_t> root = clusterStage.thickerRoot())
@@ -130,7 +140,11 @@ void VoxelCoder::Impl::traceComponent()
   const skeleton::StageTimer timer{ meter, "trace(all)" };
   const std::size_t firstPath = draft.skeleton.paths.size();
   const bool globalField = par.globalSs_mm != nullptr;
-  if (skeleton::TraceStage(tracer, par.minimumBranchLength, globalField).run() == 0)
+  if (skeleton::TraceStage(tracer,
+        par.minimumBranchLength,
+        globalField,
+        faceTipBands.empty() ? nullptr : &faceTipBands)
+        .run() == 0)
   {
     return;
   }
@@ -263,6 +277,11 @@ VoxelCoder::VoxelCoder(const SparseVesselMask& mask, const VoxelCodingParameters
     throw std::invalid_argument("the global SS field has " +
                                 std::to_string(parameters.globalSs_mm->size()) + " values for " +
                                 std::to_string(mask.vesselCount()) + " vessel voxels");
+  }
+  if (parameters.faceTipBands && !parameters.globalSs_mm)
+  {
+    throw std::invalid_argument("the face tips' answers need the global SS field (one call per "
+                                "run: the coder calls them only in the global-field mode)");
   }
   if (parameters.hasSeed)
   {

@@ -18,6 +18,10 @@
 
 namespace vtouch
 {
+namespace skeleton
+{
+class SkeletonTracer;
+} // namespace skeleton
 
 /// Thrown by VoxelCoder::run() when the progress callback asks to stop (a Cancelled: callers
 /// that stop several stages catch that).
@@ -43,6 +47,13 @@ struct VoxelCodingParameters
   /// the field is lowest (the root, or where the vessels enter the piece), and ignores the rest;
   /// the seed is then not used. Not owned: it must outlive run().
   const std::vector<float>* globalSs_mm = nullptr;
+  /// With globalSs_mm on several ranks: the single run's answer for the piece's face tips
+  /// (vtouch::DistributedFaceTips::answer: per cluster, kNotAFaceTip, kNoTipBeyond or the band
+  /// of the true tip beyond the face), called once per run (a collective: also when the field
+  /// reaches no voxel of the piece), after the clusters, before the traces. TraceStage then
+  /// orders a face tip by that band and traces one with no tip beyond as a loop's second side.
+  /// Empty (default): face tips keep their own band (the single run has none).
+  std::function<std::vector<std::int64_t>(const skeleton::SkeletonTracer&)> faceTipBands;
 };
 
 struct RawSkeletonPath

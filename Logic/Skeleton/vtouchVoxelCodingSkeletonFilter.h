@@ -147,6 +147,16 @@ public:
     this->m_GlobalSeedCode = std::move(function);
     this->Modified();
   }
+  /// With GlobalSeedCode on several ranks: the single run's answer for the piece's face tips
+  /// (VoxelCodingParameters::faceTipBands; vtouch::DistributedFaceTips), a collective the coder
+  /// calls once per run after its clusters. Empty (default): face tips keep their own band.
+  using GlobalFaceTipsFunction =
+    std::function<std::vector<std::int64_t>(const skeleton::SkeletonTracer& tracer)>;
+  void SetGlobalFaceTips(GlobalFaceTipsFunction function)
+  {
+    this->m_GlobalFaceTips = std::move(function);
+    this->Modified();
+  }
   /// Number of vessel voxels of the last run (input resolution), and the bytes used by the masks
   /// and the codes.
   itkGetConstMacro(NumberOfVesselVoxels, unsigned long long);
@@ -206,6 +216,7 @@ private:
   RawSkeleton m_RawSkeleton;
   std::shared_ptr<const SparseVesselMask> m_VesselMask;
   GlobalSeedCodeFunction m_GlobalSeedCode;
+  GlobalFaceTipsFunction m_GlobalFaceTips;
   /// The mask's share of the run's progress (the vesselness, when on, takes half the run).
   float m_MaskProgressShare{ 0.05F };
 };

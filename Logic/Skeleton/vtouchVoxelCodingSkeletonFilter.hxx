@@ -413,6 +413,10 @@ RawSkeleton VoxelCodingSkeletonFilter<TInputImage>::Code(const SparseVesselMask&
     std::max<unsigned long>(1, this->m_MinimumComponentSize / (factor * factor * factor));
   par.clusterWidth_mm = this->m_ClusterWidth;
   par.globalSs_mm = globalSs_mm;
+  if (globalSs_mm)
+  {
+    par.faceTipBands = this->m_GlobalFaceTips;
+  }
   if (seed)
   {
     // The block of a vessel voxel is vessel (block maximum).

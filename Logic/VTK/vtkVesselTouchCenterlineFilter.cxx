@@ -319,7 +319,9 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
       return !this->CancelRequested();
     },
     global ? [global](vtouch::SparseVesselMask& m) { return global->code(m); }
-           : std::function<std::vector<float>(vtouch::SparseVesselMask&)>() };
+           : std::function<std::vector<float>(vtouch::SparseVesselMask&)>(),
+    global ? [global](const vtouch::skeleton::SkeletonTracer& t) { return global->faceTips(t); }
+           : std::function<std::vector<std::int64_t>(const vtouch::skeleton::SkeletonTracer&)>() };
   try
   {
     vtouch::CoderRun coded = vtouch::skeletonizeVolume(input, scalars, s);

@@ -195,8 +195,10 @@ std::unique_ptr<DistributedGlobalField> DistributedGlobalField::seeded(
   std::unique_ptr<DistributedGlobalField> f(new DistributedGlobalField(controller));
   SeededDistributedCoding::Settings settings;
   settings.clearOuterLayer = clearOuterLayer;
+  PieceLayout layout = gatherLayout(*f->Collectives, input, input != nullptr, whole);
+  f->FaceTips = std::make_unique<DistributedFaceTips>(*f->Collectives, layout);
   f->Field = std::make_unique<SeededSource>(*f->Collectives,
-    gatherLayout(*f->Collectives, input, input != nullptr, whole),
+    std::move(layout),
     spacingOf(input),
     hasSeed && input != nullptr,
     seed_Whole,
@@ -211,32 +213,52 @@ std::unique_ptr<DistributedGlobalField> DistributedGlobalField::automaticRoot(
   const DistributedRootChoice::Parameters& parameters)
 {
   std::unique_ptr<DistributedGlobalField> f(new DistributedGlobalField(controller));
-  f->Field = std::make_unique<AutomaticRootSource>(*f->Collectives,
-    gatherLayout(*f->Collectives, input, input != nullptr, whole),
-    spacingOf(input),
-    parameters);
+  PieceLayout layout = gatherLayout(*f->Collectives, input, input != nullptr, whole);
+  f->FaceTips = std::make_unique<DistributedFaceTips>(*f->Collectives, layout);
+  f->Field = std::make_unique<AutomaticRootSource>(
+    *f->Collectives, std::move(layout), spacingOf(input), parameters);
   return f;
 }
 
 std::vector<float> DistributedGlobalField::code(SparseVesselMask& mask)
 {
-  return this->Field->code(mask);
+  std::vector<float> ss = this->Field->code(mask);
+  this->FieldGiven = true;
+  return ss;
+}
+
+std::vector<std::int64_t> DistributedGlobalField::faceTips(const skeleton::SkeletonTracer& tracer)
+{
+  return this->FaceTips->answer(tracer);
 }
 
 void DistributedGlobalField::finish()
 {
-  if (this->Field->joined())
+  if (!this->Field->joined())
   {
-    return;
+    try
+    {
+      this->Field->join();
+      this->FieldGiven = true;
+    }
+    catch (const std::runtime_error&)
+    {
+      // This rank's run failed before its coder: its own message speaks for it (the others
+      // report the common verdict).
+    }
   }
-  try
+  // The face tips' rounds follow the field's on every rank that got the field: a rank whose
+  // coder stopped before them (an error, a cancel) still takes part, with nothing to tell.
+  if (this->FieldGiven && !this->FaceTips->joined())
   {
-    this->Field->join();
-  }
-  catch (const std::runtime_error&)
-  {
-    // This rank's run failed before its coder: its own message speaks for it (the others
-    // report the common verdict).
+    try
+    {
+      this->FaceTips->join();
+    }
+    catch (const std::runtime_error&)
+    {
+      // Its own run's message stands.
+    }
   }
 }
 

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "vtouchDistributedCenterline.h" // for VoxelExtent6
+#include "vtouchDistributedFaceTips.h"
 #include "vtouchDistributedRootChoice.h"
 #include "vtouchPieceLayout.h"
 #include "vtouchRankCollectives.h"
@@ -80,8 +81,13 @@ public:
 
   /// The coder's hook (VoxelCodingSkeletonFilter::SetGlobalSeedCode): collective, once.
   std::vector<float> code(SparseVesselMask& mask);
+  /// The coder's second hook (VoxelCodingSkeletonFilter::SetGlobalFaceTips; vtouch::
+  /// DistributedFaceTips): collective, once, after code() gave the field.
+  std::vector<std::int64_t> faceTips(const skeleton::SkeletonTracer& tracer);
   /// After the piece's run, on every rank: joins without a mask if the run stopped before its
-  /// coder (its own message stands: the join's verdict is not reported on this rank).
+  /// coder (its own message stands: the join's verdict is not reported on this rank), and joins
+  /// the face tips' rounds when the field was given (on every rank alike) but this rank's coder
+  /// did not reach them.
   void finish();
   void addReport(vtkFieldData* fd) const;
 
@@ -90,6 +96,8 @@ private:
 
   std::unique_ptr<RankCollectives> Collectives;
   std::unique_ptr<Source> Field;
+  std::unique_ptr<DistributedFaceTips> FaceTips;
+  bool FieldGiven = false; ///< the field's rounds succeeded (the same verdict on every rank)
 };
 
 } // namespace vtouch

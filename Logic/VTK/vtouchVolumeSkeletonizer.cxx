@@ -89,6 +89,10 @@ QSkeleton skeletonize(vtkImageData* image,
   {
     filter->SetGlobalSeedCode(s.globalSeedCode);
   }
+  if (s.globalFaceTips)
+  {
+    filter->SetGlobalFaceTips(s.globalFaceTips);
+  }
   // Progress to VTK; VTK's abort flag and the cancel flag to ITK (on the thread that runs the
   // filter: ITK invokes progress events on the thread that called Update()).
   auto progress = itk::CStyleCommand::New();

@@ -7,6 +7,7 @@
 #include "vtouchProgress.h"
 #include "vtouchQSkeleton.h"
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -19,6 +20,10 @@ class vtkImageData;
 namespace vtouch
 {
 class SparseVesselMask;
+namespace skeleton
+{
+class SkeletonTracer;
+} // namespace skeleton
 
 /// What VesselCenterline passes to the coder: its properties, resolved for this run.
 struct CoderSettings
@@ -40,6 +45,9 @@ struct CoderSettings
   /// The distributed seeded modes' global SS code (VoxelCodingSkeletonFilter::SetGlobalSeedCode),
   /// or empty (the single run).
   std::function<std::vector<float>(SparseVesselMask&)> globalSeedCode;
+  /// With it, the face tips' single-run answers (VoxelCodingSkeletonFilter::SetGlobalFaceTips),
+  /// or empty.
+  std::function<std::vector<std::int64_t>(const skeleton::SkeletonTracer&)> globalFaceTips;
 };
 
 /// What one run of the coder gives.

@@ -17,7 +17,10 @@ estimated (AutomaticIntensityRange: the raw modes; without --seed the range from
 computed across the ranks) and IntensityRangeUsed is printed; --raw-phantom N writes
 VesselPhantom's raw angiogram (ClientServer.DistributedRawSeeded's: 60 segments, 4 clutter
 objects, seed 3, float) at N^3 to --volume first; --largest-radius sets LargestVesselRadius (the
-ghost margin). Each run prints its UpdatePipeline time (client wall clock, the server's run and
+ghost margin; ClientServer.DistributedExtraction's phantoms: 3.2); --phantom SHAPE writes the
+built-in VesselPhantom of that Shape as ClientServer.DistributedExtraction does (128^3,
+RadiusFraction 0.025; 0 = the ring, 4 = the Y, 5 = the tree, 6 = the loop network; use --lower
+550 --largest-radius 3.2) to --volume first. Each run prints its UpdatePipeline time (client wall clock, the server's run and
 the delivery) and, against the first rank count's run, the farthest point either way (voxels).
 A measurement, not a test: nothing is asserted.
 """
@@ -41,6 +44,15 @@ def write_raw_phantom(path, n):
     simple.LoadPlugin(os.environ["VESSELTOUCH_PLUGIN"], remote=False, ns=globals())
     phantom = VesselPhantom(Shape=8, Dimensions=[n, n, n], AngiogramSegments=60,  # noqa: F821
                             ClutterCount=4, Seed=3, OutputScalarType=10)
+    write_float_nrrd(path, sm.Fetch(phantom))
+    simple.Delete(phantom)
+
+
+def write_phantom(path, shape):
+    """The ClientServer.DistributedExtraction phantom `shape` as a float NRRD at `path`."""
+    simple.LoadPlugin(os.environ["VESSELTOUCH_PLUGIN"], remote=False, ns=globals())
+    phantom = VesselPhantom(Dimensions=[128, 128, 128], RadiusFraction=0.025,  # noqa: F821
+                            Shape=shape)
     write_float_nrrd(path, sm.Fetch(phantom))
     simple.Delete(phantom)
 
@@ -114,9 +126,13 @@ def main():
                         help="LargestVesselRadius, mm (0: automatic)")
     parser.add_argument("--raw-phantom", type=int, default=0,
                         help="write the raw phantom at N^3 to --volume first")
+    parser.add_argument("--phantom", type=int, default=None,
+                        help="write the built-in phantom of this Shape to --volume first")
     args = parser.parse_args()
     if args.raw_phantom:
         write_raw_phantom(args.volume, args.raw_phantom)
+    if args.phantom is not None:
+        write_phantom(args.volume, args.phantom)
     if not os.path.exists(args.volume):
         sys.exit("no volume at %s" % args.volume)
     if "VESSELTOUCH_PLUGIN" not in os.environ:

@@ -1,0 +1,91 @@
+// The single run's answer for each face tip of a piece coded with the global SS field (issue 19
+// item 2, "A root in the middle of a tube", Docs/CLIENT-SERVER.md).
+//
+// A face tip is a cluster without higher neighbours that touches a face of the piece shared with
+// another piece: a local maximum of the SS code only because the piece ends there. The single
+// run has no such tip: it traces the farthest true tip beyond the face first (its tip order is by
+// the tip's band, Zhou & Toga's back-tracing, Yi & Hayward §3.1), or, when no tip's trace enters
+// the piece there, reaches that side only by closing a loop (LoopStage::closeLoops' side B). The
+// root's rank has to know which, or it orders and joins the root's two sides unlike the single run.
+//
+// How: the traces of the true tips, without touches (SkeletonTracer::descend on the global field,
+// which steps from a voxel to its lower neighbour of largest BS: memoryless, so the same chain on
+// every rank away from its faces), are followed across the pieces in collective rounds
+// (CollectiveRounds, as the SS field's): each rank descends from its own true tips (not at a
+// shared face, starting voxel owned) and from the chain voxels handed to it, along its owned box;
+// where a chain steps into another rank's owned box it hands the chain over (the voxel and the
+// tip's band), and it tells every rank whose held box the chain crosses in its owned box which
+// voxels it crossed, with the band. The rounds end when no rank hands anything over; at most one
+// round per owner change along the longest chain, plus one.
+//
+// A face tip's answer: its own descent (no touches) from the face, the first cluster within a few
+// bands of its start (kAnswerWindow) that holds a voxel of a crossing chain gives the largest
+// band among those voxels; none: no tip's trace enters the piece there (a loop's second side).
+// Departure (named): tips tied in band are ordered by cluster index, which differs between a
+// piece and the single run.
+//
+// Every rank must call answer() or join() exactly once per run (a collective), with or without a
+// piece or vessel; a round cap (kDefaultMaximumRounds, a project rule as the SS field's) stops
+// every rank in the same round with the same message (thrown).
+#pragma once
+
+#include "vtouchPieceLayout.h"
+#include "vtouchRankCollectives.h"
+#include "vtouchRoundsOutcome.h"
+
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+namespace vtouch
+{
+namespace skeleton
+{
+class SkeletonTracer;
+} // namespace skeleton
+
+/// Thrown by answer() and join() on every rank in the same round, with the same message.
+class DistributedFaceTipsError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+class DistributedFaceTips
+{
+public:
+  /// Per cluster in answer()'s result: not a face tip (the cluster keeps its own band).
+  static constexpr std::int64_t kNotAFaceTip = -2;
+  /// Per cluster: a face tip that no true tip's trace enters (the single run closes a loop there).
+  static constexpr std::int64_t kNoTipBeyond = -1;
+  /// A project rule, as DistributedSeedCode's: chains that change owner more often than this are
+  /// not a vessel tree's traces.
+  static constexpr int kDefaultMaximumRounds = 1000;
+
+  /// `layout`: the pieces, the same on every rank (PieceLayout::check()ed by the caller).
+  DistributedFaceTips(RankCollectives& collectives,
+    PieceLayout layout,
+    int maximumRounds = kDefaultMaximumRounds);
+
+  /// Collective, once: per cluster of `tracer`'s graph (the global-field coder's, after its
+  /// clusters and before its traces, on this rank's held box), kNotAFaceTip, kNoTipBeyond, or the
+  /// band of the farthest true tip whose trace enters the piece through that face tip.
+  std::vector<std::int64_t> answer(const skeleton::SkeletonTracer& tracer);
+  /// Collective, once: takes part without clusters (a rank whose coder did not reach answer()).
+  void join();
+
+  bool joined() const { return this->Joined; }
+  /// The rounds' outcome (the same rounds on every rank) and this rank's messages.
+  const RoundsOutcome& outcome() const { return this->Outcome; }
+
+private:
+  std::vector<std::int64_t> run(const skeleton::SkeletonTracer* tracer);
+
+  RankCollectives& Collectives;
+  PieceLayout Layout;
+  int MaximumRounds;
+  bool Joined = false;
+  RoundsOutcome Outcome;
+};
+
+} // namespace vtouch
