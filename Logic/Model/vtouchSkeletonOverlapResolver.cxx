@@ -41,7 +41,15 @@ struct Copy
   double at = 0.0; ///< where on the copy's fragment, a fractional point index
   Vec3 position;
   double distance = std::numeric_limits<double>::infinity();
+  /// |cos| of the angle between the two fragments' directions there (1 when either has none).
+  double alignment = 1.0;
+  /// The copy is its fragment's attached end: a duplicate of the parent point it hangs on.
+  bool attachedEnd = false;
 };
+
+/// Copies this much nearer or farther than another are equally near (a point and its copy are
+/// often equal up to the rounding of a projection, mm).
+constexpr double kTie_mm = 1e-6;
 
 /// The unit direction of a fragment at point i (central difference), or zero for one point.
 Vec3 directionAt(const SkeletonFragment& f, std::size_t i)
@@ -95,7 +103,9 @@ std::vector<Copy> nearestCopies(const std::vector<SkeletonFragment>& fragments,
           continue;
         }
         const Vec3 dq = length2 > 0.0 ? ab * (1.0 / std::sqrt(length2)) : Vec3{};
-        if (dp.norm() > 0.0 && dq.norm() > 0.0 && std::abs(dp.dot(dq)) < minimumCosine)
+        const bool directed = dp.norm() > 0.0 && dq.norm() > 0.0;
+        const double alignment = directed ? std::abs(dp.dot(dq)) : 1.0;
+        if (alignment < minimumCosine)
         {
           continue; // another vessel passing near (a branch at its junction)
         }
@@ -105,14 +115,28 @@ std::vector<Copy> nearestCopies(const std::vector<SkeletonFragment>& fragments,
         c.at = static_cast<double>(a) + t * static_cast<double>(b - a);
         c.position = q;
         c.distance = d;
+        c.alignment = alignment;
+        const long nearestPoint = std::lround(c.at);
+        c.attachedEnd =
+          (nearestPoint == 0 && other.head.kind == FragmentEnd::Kind::Attached) ||
+          (nearestPoint == static_cast<long>(m) - 1 &&
+            other.tail.kind == FragmentEnd::Kind::Attached);
         const auto same = std::find_if(
           best.begin(), best.end(), [&](const Copy& x) { return x.piece == other.piece; });
         if (same == best.end())
         {
           best.push_back(c);
         }
-        else if (d < same->distance)
+        else if (d < same->distance - kTie_mm ||
+                 (std::abs(d - same->distance) <= kTie_mm &&
+                   std::make_pair(!c.attachedEnd, c.alignment) >
+                     std::make_pair(!same->attachedEnd, same->alignment)))
         {
+          // Ties of distance: a junction's point is both a point of the parent path and the
+          // first point of the branch attached there (a copy of it). The parent's point is the
+          // copy, then the one along the same vessel (project rule; on the 512 x 512 x 256
+          // tree a junction on a face went to the branch's copy, and the parent path, cut a
+          // voxel short, left an unmatched cut end).
           *same = c;
         }
       }

@@ -112,19 +112,19 @@ public:
 
   /// On a parallel pvserver (MPI), who codes the volume (issue 19 item 2; Docs/CLIENT-SERVER.md,
   /// "Distributed extraction"). Not used built in.
-  /// - DistributedExtractionOff (0, the default): the first rank codes the whole volume (the single
-  ///   run's result exactly; no memory scaling). Automatic is not the default yet: on the 512 x 512
-  ///   x 256 scaling tree (explored on blocks) 2 ranks gave 32 / 55 / 14 against the single run's
-  ///   31 / 53 / 12 (Docs/CLIENT-SERVER.md, "Automatic").
+  /// - DistributedExtractionOff (0): the first rank codes the whole volume (the single run's
+  ///   result exactly; no memory scaling).
   /// - DistributedExtractionOn (1): each rank codes its own piece grown by the ghost margin, sends
   ///   its owned points and an overlap band, and the first rank stitches the pieces (the memory per
   ///   rank falls with the ranks), in every mode.
-  /// - DistributedExtractionAutomatic (2): On where the distributed run codes with
-  ///   the single run's SS field from the single run's root (a thresholded or binary mask and
-  ///   the raw mode, with or without a seed, at full resolution; see DistributesExactly), Off
-  ///   elsewhere (an explicit DownsampleFactor > 1; vesselness), where only the first rank gives
-  ///   the single run's network (project rule: the default never trades the single run's
-  ///   network for memory).
+  /// - DistributedExtractionAutomatic (2, the default since 27 Nov): On where the distributed run
+  ///   codes with the single run's SS field from the single run's root (a thresholded or binary
+  ///   mask and the raw mode, with or without a seed, at full resolution; see
+  ///   DistributesExactly), Off elsewhere (an explicit DownsampleFactor > 1; vesselness), where
+  ///   only the first rank gives the single run's network (project rule: the default never
+  ///   trades the single run's network for memory). Measured: the single run's topology on every
+  ///   volume measured, up to the 1024 x 1024 x 512 scaling tree (Docs/CLIENT-SERVER.md,
+  ///   "Automatic").
   enum
   {
     DistributedExtractionOff = 0,
@@ -233,7 +233,7 @@ private:
   int VesselnessNumberOfScales = 4;
   double VesselnessThreshold = 0.05;
   double LargestVesselRadius = 0.0;
-  int DistributedExtraction = DistributedExtractionOff;
+  int DistributedExtraction = DistributedExtractionAutomatic;
   bool QuietErrors = false;
   std::string LastRunKey;
   vtkSmartPointer<vtkPolyData> PrecomputedOutput;

@@ -1,7 +1,7 @@
 #include "vtouchDistributedStitchRun.h"
 
+#include "vtouchDistributedFaceTips.h"
 #include "vtouchDistributedSeedCode.h"
-#include "vtouchDistributedUpstreamMaximum.h"
 #include "vtouchEveryRank.h"
 #include "vtouchPhantomGenerator.h"
 #include "vtouchPieceGrid.h"
@@ -153,30 +153,20 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   run.root = roots.front();
   // Every rank: its grown piece coded with the single run's field (the filter's hook).
   const std::vector<PieceLayout> layout = layouts(dims, counts, ghost_voxels);
-  run.ssAndUpstream.resize(layout.size());
-  run.upstreamRounds.resize(layout.size());
   run.pieces = onEveryRank<QSkeleton>(layout,
     [&](const PieceLayout& l, RankCollectives& c, QSkeleton& out)
     {
-      auto& values = run.ssAndUpstream[static_cast<std::size_t>(l.rank)];
       FloatImage::Pointer piece = imageOf(voxels, dims, l.mine());
       Filter::Pointer filter = coder(piece, lower);
+      // The face tips' order across the pieces, as the filter's DistributedGlobalField gives it.
+      DistributedFaceTips faceTips(c, l);
+      filter->SetGlobalFaceTips(
+        [&faceTips](const skeleton::SkeletonTracer& t) { return faceTips.answer(t); });
       filter->SetGlobalSeedCode(
         [&](SparseVesselMask& mask)
         {
           DistributedSeedCode code(l, mask, { 1.0, 1.0, 1.0 });
           code.run(c, roots);
-          DistributedUpstreamMaximum up(l, mask, code.ss());
-          run.upstreamRounds[static_cast<std::size_t>(l.rank)] = up.run(c);
-          const Index d = mask.dims();
-          mask.forEach(
-            [&](std::uint64_t lin)
-            {
-              const auto i = static_cast<std::int64_t>(lin);
-              const Index w = l.toWhole({ i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1]) });
-              values[l.wholeLinear(w)] = { code.ss()[mask.rank(lin)],
-                up.upstream_mm()[mask.rank(lin)] };
-            });
           return code.ss();
         });
       filter->Update();
@@ -203,32 +193,6 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   stitcher.coincidentPoint_mm = kCoincidentPointVoxels;
   run.stitched = stitcher.stitch(all, run.report);
   return run;
-}
-
-std::pair<float, float> ssAndUpstreamNear(const DistributedStitchRun& run,
-  std::size_t r,
-  const Vec3& p)
-{
-  const float inf = std::numeric_limits<float>::infinity();
-  std::pair<float, float> best{ inf, inf };
-  double nearest = 4.0; // squared: within 2 voxels
-  const Index c{ std::llround(p.x), std::llround(p.y), std::llround(p.z) };
-  const auto& values = run.ssAndUpstream[r];
-  for (std::int64_t dz = -2; dz <= 2; ++dz)
-    for (std::int64_t dy = -2; dy <= 2; ++dy)
-      for (std::int64_t dx = -2; dx <= 2; ++dx)
-      {
-        const Index q{ c[0] + dx, c[1] + dy, c[2] + dz };
-        const auto it = values.find(q[0] + run.dims[0] * (q[1] + run.dims[1] * q[2]));
-        const double d2 = (Vec3{ double(q[0]), double(q[1]), double(q[2]) } - p)
-                            .dot(Vec3{ double(q[0]), double(q[1]), double(q[2]) } - p);
-        if (it != values.end() && it->second.first != inf && d2 < nearest)
-        {
-          nearest = d2;
-          best = it->second;
-        }
-      }
-  return best;
 }
 
 double farthestPoint_mm(const QSkeleton& a,

@@ -1,7 +1,7 @@
 // The filter's distributed run without MPI (issue 19 item 2, h19q): each rank, a thread, codes
 // its grown piece of a phantom volume with VoxelCodingSkeletonFilter and the single run's SS
-// field (DistributedSeedCode from the single run's root, as the filter's global-field hook; and
-// DistributedUpstreamMaximum's U beside it, the key the tip order would need),
+// field (DistributedSeedCode from the single run's root, as the filter's global-field hook), the
+// face tips' order across the pieces (DistributedFaceTips, as the filter's second hook),
 // clips it to its owned box and the overlap band (SkeletonClipper, kOverlapBandVoxels) and the
 // pieces are stitched (SkeletonStitcher, configured as DistributedCenterline::gatherAndStitch).
 // What the geometry tests compare with the single run: the stitched skeleton and, to tell a
@@ -31,17 +31,7 @@ struct DistributedStitchRun
   PieceOwnership ownership;           ///< the executive's split
   std::array<std::int64_t, 3> root{}; ///< the single run's (first) root voxel
   std::array<std::int64_t, 3> dims{}; ///< the volume's voxels per axis
-  /// Per rank, the global field and DistributedUpstreamMaximum's U on its held vessel voxels, by
-  /// whole-volume linear index (computed in rounds beside the field).
-  std::vector<std::map<std::int64_t, std::pair<float, float>>> ssAndUpstream;
-  std::vector<RoundsOutcome> upstreamRounds; ///< per rank, DistributedUpstreamMaximum's rounds
 };
-
-/// The global field's SS and U (mm) of rank `r`'s vessel voxel nearest `p` within its held box
-/// (1 mm voxels at 0); {inf, inf} when none lies within 2 voxels.
-std::pair<float, float> ssAndUpstreamNear(const DistributedStitchRun& run,
-  std::size_t r,
-  const Vec3& p);
 
 /// `spec`'s volume thresholded at `lower` (VesselCenterline: AutomaticIntensityRange off), split
 /// as the executive splits it into `counts` pieces, each grown by `ghost_voxels`. `seeded`: the
