@@ -5,77 +5,65 @@
 
 namespace vtouch
 {
+namespace
+{
+/// Component 0 of a voxel through vtkDataArray: the lookup for the types not read typed.
+struct ComponentLookup
+{
+  vtkDataArray* scalars;
+  double operator[](std::uint64_t lin) const
+  {
+    return this->scalars->GetComponent(static_cast<vtkIdType>(lin), 0);
+  }
+};
+
+/// `make(data)` with `data` the voxels as `const T*` for float, double, unsigned char, short and
+/// unsigned short, else as a ComponentLookup (indexed like a pointer). Unlike withTypedScalars
+/// (vtouchTypedScalars.h) it makes no copy: what `make` returns may keep `data` past the call.
+template<class Make>
+auto withVoxelLookup(vtkDataArray* scalars, Make&& make)
+{
+  const void* data = scalars->GetVoidPointer(0);
+  switch (scalars->GetDataType())
+  {
+    case VTK_FLOAT:
+      return make(static_cast<const float*>(data));
+    case VTK_DOUBLE:
+      return make(static_cast<const double*>(data));
+    case VTK_UNSIGNED_CHAR:
+      return make(static_cast<const unsigned char*>(data));
+    case VTK_SHORT:
+      return make(static_cast<const short*>(data));
+    case VTK_UNSIGNED_SHORT:
+      return make(static_cast<const unsigned short*>(data));
+    default:
+      return make(ComponentLookup{ scalars });
+  }
+}
+} // namespace
+
 SectionForeground rangeForeground(vtkDataArray* scalars,
   std::array<std::int64_t, 3> dims,
   double lower,
   double upper)
 {
-  SectionForeground fg;
-  fg.dims = dims;
-  const auto typed = [&](auto* data)
-  {
-    fg.inside = [data, lower, upper](std::uint64_t lin)
-    {
-      const double v = static_cast<double>(data[lin]);
-      return v >= lower && v <= upper;
-    };
-  };
-  void* data = scalars->GetVoidPointer(0);
-  switch (scalars->GetDataType())
-  {
-    case VTK_FLOAT:
-      typed(static_cast<const float*>(data));
-      break;
-    case VTK_DOUBLE:
-      typed(static_cast<const double*>(data));
-      break;
-    case VTK_UNSIGNED_CHAR:
-      typed(static_cast<const unsigned char*>(data));
-      break;
-    case VTK_SHORT:
-      typed(static_cast<const short*>(data));
-      break;
-    case VTK_UNSIGNED_SHORT:
-      typed(static_cast<const unsigned short*>(data));
-      break;
-    default:
-      fg.inside = [scalars, lower, upper](std::uint64_t lin)
+  return { dims,
+    withVoxelLookup(scalars,
+      [lower, upper](auto data) -> std::function<bool(std::uint64_t)>
       {
-        const double v = scalars->GetComponent(static_cast<vtkIdType>(lin), 0);
-        return v >= lower && v <= upper;
-      };
-  }
-  return fg;
+        return [data, lower, upper](std::uint64_t lin)
+        {
+          const double v = static_cast<double>(data[lin]);
+          return v >= lower && v <= upper;
+        };
+      }) };
 }
 
 SectionIntensity volumeIntensity(vtkDataArray* scalars, std::array<std::int64_t, 3> dims)
 {
-  SectionIntensity in;
-  in.dims = dims;
-  const auto typed = [&](auto* data)
-  { in.value = [data](std::uint64_t lin) { return static_cast<double>(data[lin]); }; };
-  void* data = scalars->GetVoidPointer(0);
-  switch (scalars->GetDataType())
-  {
-    case VTK_FLOAT:
-      typed(static_cast<const float*>(data));
-      break;
-    case VTK_DOUBLE:
-      typed(static_cast<const double*>(data));
-      break;
-    case VTK_UNSIGNED_CHAR:
-      typed(static_cast<const unsigned char*>(data));
-      break;
-    case VTK_SHORT:
-      typed(static_cast<const short*>(data));
-      break;
-    case VTK_UNSIGNED_SHORT:
-      typed(static_cast<const unsigned short*>(data));
-      break;
-    default:
-      in.value = [scalars](std::uint64_t lin)
-      { return scalars->GetComponent(static_cast<vtkIdType>(lin), 0); };
-  }
-  return in;
+  return { dims,
+    withVoxelLookup(scalars,
+      [](auto data) -> std::function<double(std::uint64_t)>
+      { return [data](std::uint64_t lin) { return static_cast<double>(data[lin]); }; }) };
 }
 } // namespace vtouch
