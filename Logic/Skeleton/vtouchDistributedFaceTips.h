@@ -19,10 +19,12 @@
 // round per owner change along the longest chain, plus one.
 //
 // A face tip's answer: its own descent (no touches) from the face, the first cluster within a few
-// bands of its start (kAnswerWindow) that holds a voxel of a crossing chain gives the largest
-// band among those voxels; none: no tip's trace enters the piece there (a loop's second side).
-// Departure (named): tips tied in band are ordered by cluster index, which differs between a
-// piece and the single run.
+// bands of its start, or of the last cluster on the descent that a shared face cuts (a vessel
+// grazing the face, its axis outside: h19j), (kAnswerWindow) that holds a voxel of a crossing
+// chain gives the largest band among those voxels; none: no tip's trace enters the piece there
+// (a loop's second side).
+// Departure (named): tips tied in rank and in their own band (TraceStage) are ordered by cluster
+// index, which differs between a piece and the single run.
 //
 // Every rank must call answer() or join() exactly once per run (a collective), with or without a
 // piece or vessel; a round cap (kDefaultMaximumRounds, a project rule as the SS field's) stops

@@ -54,10 +54,21 @@ std::size_t TraceStage::run()
   }
   const auto rank = [&](std::uint32_t c)
   { return answer(c) >= 0 ? answer(c) : static_cast<std::int64_t>(clusters[c].band); };
+  // Ties in rank: the higher own band first (h19j). A tie between different own bands needs a
+  // face tip (a true tip's rank is its band): a true tip and the face tips answered with its band
+  // are where its chain starts and enters the piece again, and the single run's one trace meets
+  // them in descending SS; traced the other way round, the later entry's trace starts a path in the
+  // middle of the chain, and the earlier one joins it as a branch. Then the cluster index.
   std::sort(tips.begin(),
     tips.end(),
     [&](std::uint32_t a, std::uint32_t b)
-    { return rank(a) != rank(b) ? rank(a) > rank(b) : a < b; });
+    {
+      if (rank(a) != rank(b))
+      {
+        return rank(a) > rank(b);
+      }
+      return clusters[a].band != clusters[b].band ? clusters[a].band > clusters[b].band : a < b;
+    });
   const std::size_t firstPath = out.paths.size();
   for (std::uint32_t tip : tips)
   {

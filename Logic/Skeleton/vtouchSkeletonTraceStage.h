@@ -37,7 +37,9 @@ public:
   /// ordered among the tips by the band of the single run's tip beyond the face instead of its
   /// own; one with no tip beyond (DistributedFaceTips::kNoTipBeyond) is the side the single run
   /// reaches only by closing a loop: it is traced after every tip as LoopStage::closeLoops' side
-  /// B is, attached where it touches (no spur test, no joinAlongBranchAxis).
+  /// B is, attached where it touches (no spur test, no joinAlongBranchAxis). Tips tied in rank
+  /// go by their own band, higher first (one chain's entries in the single run's order), then
+  /// by cluster index; without answers the rank is the band, so the single run is unchanged.
   TraceStage(SkeletonTracer& tracer,
     double minimumBranchLength,
     bool onlyRootBandIsRoot = false,

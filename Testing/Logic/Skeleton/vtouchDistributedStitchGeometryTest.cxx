@@ -228,6 +228,14 @@ TEST(DistributedStitchGeometry, DISABLED_AVolumeFromAFile)
   }
   const test::DistributedStitchRun run = test::runDistributedStitch(voxels, dims, 500.0, split, 73);
   expectDeparturesAreTheOwnersCoding("volume", run);
+  std::printf("paths %zu / %zu, free ends %d / %d, junctions %zu / %zu (stitched / single)\n",
+    run.stitched.paths.size(),
+    run.single.paths.size(),
+    test::freeEnds(run.stitched),
+    test::freeEnds(run.single),
+    run.stitched.junctions.size(),
+    run.single.junctions.size());
+  expectSameNetwork(run);
   std::printf("stitch: %d cut ends joined, %d unmatched, %d duplicates removed\n",
     run.report.cutEndsJoined,
     run.report.cutEndsUnmatched,
@@ -236,7 +244,6 @@ TEST(DistributedStitchGeometry, DISABLED_AVolumeFromAFile)
   {
     std::printf("  %s\n", note.c_str());
   }
-
 }
 
 } // namespace
