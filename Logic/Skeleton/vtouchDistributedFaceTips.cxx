@@ -28,8 +28,15 @@ constexpr std::int64_t kCrossed = 1;
 /// local radii below its start (project rule: the slab a chain crosses where it enters the piece
 /// lies within a radius of the face, and a step of at most sqrt(3) voxels skips at most one band
 /// of the largest spacing; a band more absorbs the face's cut slabs). Beyond it a chain met on
-/// the descent came from elsewhere (a branch joining below the face).
+/// the descent came from elsewhere (a branch joining below the face). The local radius is the
+/// vessel's, the largest BS of the clusters the descent has crossed so far (h19k, 27 Nov): the
+/// face tip's own cluster is only the slab's part inside the piece, and where a vessel crosses
+/// the face obliquely that part is a sliver at the wall (BS about a voxel), whose descent runs
+/// along the face across the vessel to its ridge: a window of the sliver's BS ended it short of
+/// the chain there (the 512 x 512 x 256 scaling tree on 2 pieces, a branch entering at 45
+/// degrees, radius 6.4 voxels: "none", traced as a loop's side, 1.47 voxels off at its junction).
 constexpr double kAnswerWindow_bands = 3.0;
+constexpr double kAnswerWindow_radii = 2.0;
 
 CollectiveRounds roundsOfFaceTips()
 {
@@ -245,11 +252,13 @@ std::vector<std::int64_t> answers(const Piece& piece,
     }
     result[c] = DistributedFaceTips::kNoTipBeyond;
     const std::uint32_t start = skeleton::ClusterStage::tipStart(grid, clusters[c]);
-    const double floor_mm = piece.ssOf(start) - kAnswerWindow_bands * grid.bandWidth -
-                            2.0 * std::max(static_cast<double>(clusters[c].maxBs), grid.minSpacing);
+    const double top_mm = piece.ssOf(start) - kAnswerWindow_bands * grid.bandWidth;
+    double radius_mm = grid.minSpacing;
     for (const std::uint32_t v : piece.chain(start))
     {
-      if (clusters[piece.clusterOf(v)].band == 0 || piece.ssOf(v) < floor_mm)
+      const skeleton::Cluster& at = clusters[piece.clusterOf(v)];
+      radius_mm = std::max(radius_mm, static_cast<double>(at.maxBs));
+      if (at.band == 0 || piece.ssOf(v) < top_mm - kAnswerWindow_radii * radius_mm)
       {
         break; // the root band (both sides of a root meet there) or beyond the window
       }

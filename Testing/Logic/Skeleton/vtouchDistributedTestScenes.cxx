@@ -25,6 +25,14 @@ SparseVesselMask capsuleMask(const Dims& d, const std::vector<Capsule>& capsules
     });
 }
 
+std::vector<float> capsuleVolume(const Dims& d, const std::vector<Capsule>& capsules, float inside)
+{
+  const SparseVesselMask mask = capsuleMask(d, capsules);
+  std::vector<float> volume(static_cast<std::size_t>(d[0] * d[1] * d[2]), 0.0F);
+  mask.forEach([&](std::uint64_t lin) { volume[static_cast<std::size_t>(lin)] = inside; });
+  return volume;
+}
+
 std::vector<Capsule> randomCapsuleTree(const Dims& d, unsigned seed, const RandomTreeRecipe& recipe)
 {
   std::mt19937 random(seed);

@@ -31,6 +31,12 @@ struct Capsule
 /// The voxels of `d` within some capsule's radius of its axis (or of its centre, a ball).
 SparseVesselMask capsuleMask(const Dims& d, const std::vector<Capsule>& capsules);
 
+/// The same capsules as an intensity volume (x fastest): `inside` in the mask, 0 elsewhere (the
+/// thresholded input of VesselCenterline, for the harnesses that start from a volume).
+std::vector<float> capsuleVolume(const Dims& d,
+  const std::vector<Capsule>& capsules,
+  float inside = 1000.0F);
+
 /// How randomCapsuleTree grows a tree: a trunk, then 3 levels in which each capsule so far may
 /// get a branch from a point 20-80 % along its axis to a random point inside the volume, of
 /// 60-90 % of its radius (at least 1 voxel); then a ball of radius 1.2 at (2, 2, 2) (apart from
