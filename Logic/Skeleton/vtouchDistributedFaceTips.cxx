@@ -35,6 +35,11 @@ constexpr std::int64_t kCrossed = 1;
 /// along the face across the vessel to its ridge: a window of the sliver's BS ended it short of
 /// the chain there (the 512 x 512 x 256 scaling tree on 2 pieces, a branch entering at 45
 /// degrees, radius 6.4 voxels: "none", traced as a loop's side, 1.47 voxels off at its junction).
+/// And the window starts where the descent leaves the face (its last voxel within a radius of a
+/// cut face, h19k): where the vessel runs nearly along the face, its axis stays outside the held
+/// box for several radii and the descent runs beside it along the face, past every slab whose
+/// chain voxel the piece does not hold (the same tree split in z: a branch at ~74 degrees from
+/// the face's normal, 0.93 / 1.47 voxels).
 constexpr double kAnswerWindow_bands = 3.0;
 constexpr double kAnswerWindow_radii = 2.0;
 
@@ -92,6 +97,28 @@ public:
   std::vector<std::uint32_t> chain(std::uint32_t start) const
   {
     return tracer.descend(start, -1.0F, std::numeric_limits<std::size_t>::max()).voxels;
+  }
+
+  /// The distance (mm) from local voxel `lin` to the nearest face of the held box that is not the
+  /// volume's (a face the piece cuts); infinite when the held box is the whole volume.
+  double toCutFace_mm(std::uint32_t lin) const
+  {
+    const VoxelBox& held = layout.mine();
+    const std::array<std::int64_t, 3> w = wholeOf(lin);
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      const double spacing = tracer.grid.sp[a];
+      if (held.lo[a] > 0)
+      {
+        best = std::min(best, static_cast<double>(w[a] - held.lo[a]) * spacing);
+      }
+      if (held.hi[a] < layout.wholeDims[a] - 1)
+      {
+        best = std::min(best, static_cast<double>(held.hi[a] - w[a]) * spacing);
+      }
+    }
+    return best;
   }
 
   /// Per cluster: touches a face of the held box that is not the volume's (cut by the piece).
@@ -252,12 +279,16 @@ std::vector<std::int64_t> answers(const Piece& piece,
     }
     result[c] = DistributedFaceTips::kNoTipBeyond;
     const std::uint32_t start = skeleton::ClusterStage::tipStart(grid, clusters[c]);
-    const double top_mm = piece.ssOf(start) - kAnswerWindow_bands * grid.bandWidth;
+    double top_mm = piece.ssOf(start) - kAnswerWindow_bands * grid.bandWidth;
     double radius_mm = grid.minSpacing;
     for (const std::uint32_t v : piece.chain(start))
     {
       const skeleton::Cluster& at = clusters[piece.clusterOf(v)];
       radius_mm = std::max(radius_mm, static_cast<double>(at.maxBs));
+      if (piece.toCutFace_mm(v) <= radius_mm)
+      {
+        top_mm = piece.ssOf(v) - kAnswerWindow_bands * grid.bandWidth; // still along the face
+      }
       if (at.band == 0 || piece.ssOf(v) < top_mm - kAnswerWindow_radii * radius_mm)
       {
         break; // the root band (both sides of a root meet there) or beyond the window

@@ -19,11 +19,11 @@
 // round per owner change along the longest chain, plus one.
 //
 // A face tip's answer: its own descent (no touches) from the face, the first cluster within a few
-// bands plus two of the vessel's radii of its start (kAnswerWindow_*; the radius is the largest
-// BS of the clusters the descent crossed, not the face tip's own, which is a sliver at the wall
-// where the vessel crosses the face obliquely) that holds a voxel of a crossing chain gives the
+// bands plus two of the vessel's radii (kAnswerWindow_*) of where the descent leaves the face
+// (its last voxel within a radius of a cut face) that holds a voxel of a crossing chain gives the
 // largest band among those voxels; none: no tip's trace enters the piece there (a loop's second
-// side).
+// side). The radius is the largest BS of the clusters the descent crossed, not the face tip's
+// own: where a vessel crosses the face obliquely that is a sliver at the wall.
 // Departure (named): tips tied in band are ordered by cluster index, which differs between a
 // piece and the single run.
 //
