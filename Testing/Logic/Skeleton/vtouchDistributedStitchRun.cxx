@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -60,7 +61,11 @@ Filter::Pointer coder(FloatImage* image, double lower)
   filter->SetLowerThreshold(lower);
   filter->SetMinimumComponentSize(100);
   filter->SetMinimumBranchLength(2.5);
-  filter->SetSmoothingWindow(0.0);
+  // VesselCenterline's automatic windows (0); a diagnostic may fix them for every path
+  // (VESSELTOUCH_STITCH_SMOOTHING, mm: the windows then do not depend on a path's median radius,
+  // which a rank sees only for its part of a path, Docs/CLIENT-SERVER.md).
+  const char* smoothing = std::getenv("VESSELTOUCH_STITCH_SMOOTHING");
+  filter->SetSmoothingWindow(smoothing ? std::atof(smoothing) : 0.0);
   filter->SetDownsampleFactor(0);
   return filter;
 }
