@@ -25,20 +25,29 @@ constexpr std::int64_t kContinue = 0;
 constexpr std::int64_t kCrossed = 1;
 
 /// How far a face tip's own descent is searched for a crossing chain: this many bands plus two
-/// local radii below its start, or below the last cluster on the descent that a shared face cuts
-/// (project rule: the slab a chain crosses where it enters the piece lies within a radius of the
-/// face, and a step of at most sqrt(3) voxels skips at most one band of the largest spacing; a
-/// band more absorbs the face's cut slabs). Beyond it a chain met on the descent came from
-/// elsewhere (a branch joining below the face).
+/// local radii of where the descent leaves the face (project rule: the slab a chain crosses where
+/// it enters the piece lies within a radius of the face, and a step of at most sqrt(3) voxels
+/// skips at most one band of the largest spacing; a band more absorbs the face's cut slabs).
+/// Beyond it a chain met on the descent came from elsewhere (a branch joining below the face).
 ///
-/// Why from the last cut cluster (h19j, the 256^3 scaling tree's junction at (138, 137, 138)): a
-/// vessel that runs along just outside the held box has only its wall inside, cut lengthwise by
-/// the face; the chain on its axis stays outside and enters the piece only where the vessel
-/// turns in, as far down the descent as the vessel grazes the face (there 0.5 mm beyond the
-/// window from the start: the answer was "none", the leg was traced last as a loop's side, and
-/// 29 points up to 1.6 voxels from the single run moved at the junction it rises into). While
-/// the descent's slabs are still cut by a face, the chain has not necessarily entered yet.
+/// The descent is still at the face while its voxel lies within a radius of a cut face (h19k)
+/// or in a cluster a shared face cuts (h19j), and the radius is the vessel's, the largest BS of
+/// the clusters the descent has crossed so far, two causes found on the scaling trees (27 Nov):
+/// - an oblique entry (h19k): the face tip's own cluster is only the slab's part inside the
+///   piece, and where a vessel crosses the face obliquely that part is a sliver at the wall (BS
+///   about a voxel), whose descent runs along the face across the vessel to its ridge: a window
+///   of the sliver's BS ended it short of the chain there (the 512 x 512 x 256 tree on 2 pieces,
+///   a branch entering at 45 degrees, radius 6.4 voxels: "none", traced as a loop's side, 1.47
+///   voxels off at its junction); where the vessel runs nearly along the face (the same tree
+///   split in z, a branch ~74 degrees from the face's normal) its axis stays outside the held
+///   box for several radii and the descent runs beside it along the face;
+/// - a graze (h19j, the 256^3 tree's junction at (138, 137, 138)): a vessel running just outside
+///   the held box has only its wall inside, cut lengthwise by the face; the chain on its axis
+///   enters the piece only where the vessel turns in, as far down the descent as the vessel
+///   grazes the face (0.5 mm beyond the window from the start there: the leg was traced last
+///   as a loop's side, and 29 points up to 1.6 voxels off moved at the junction it rises into).
 constexpr double kAnswerWindow_bands = 3.0;
+constexpr double kAnswerWindow_radii = 2.0;
 
 CollectiveRounds roundsOfFaceTips()
 {
@@ -94,6 +103,28 @@ public:
   std::vector<std::uint32_t> chain(std::uint32_t start) const
   {
     return tracer.descend(start, -1.0F, std::numeric_limits<std::size_t>::max()).voxels;
+  }
+
+  /// The distance (mm) from local voxel `lin` to the nearest face of the held box that is not the
+  /// volume's (a face the piece cuts); infinite when the held box is the whole volume.
+  double toCutFace_mm(std::uint32_t lin) const
+  {
+    const VoxelBox& held = layout.mine();
+    const std::array<std::int64_t, 3> w = wholeOf(lin);
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      const double spacing = tracer.grid.sp[a];
+      if (held.lo[a] > 0)
+      {
+        best = std::min(best, static_cast<double>(w[a] - held.lo[a]) * spacing);
+      }
+      if (held.hi[a] < layout.wholeDims[a] - 1)
+      {
+        best = std::min(best, static_cast<double>(held.hi[a] - w[a]) * spacing);
+      }
+    }
+    return best;
   }
 
   /// Per cluster: touches a face of the held box that is not the volume's (cut by the piece).
@@ -254,17 +285,17 @@ std::vector<std::int64_t> answers(const Piece& piece,
     }
     result[c] = DistributedFaceTips::kNoTipBeyond;
     const std::uint32_t start = skeleton::ClusterStage::tipStart(grid, clusters[c]);
-    const double window_mm =
-      kAnswerWindow_bands * grid.bandWidth +
-      2.0 * std::max(static_cast<double>(clusters[c].maxBs), grid.minSpacing);
-    double floor_mm = piece.ssOf(start) - window_mm;
+    double top_mm = piece.ssOf(start) - kAnswerWindow_bands * grid.bandWidth;
+    double radius_mm = grid.minSpacing;
     for (const std::uint32_t v : piece.chain(start))
     {
-      if (cut[piece.clusterOf(v)])
+      const skeleton::Cluster& at = clusters[piece.clusterOf(v)];
+      radius_mm = std::max(radius_mm, static_cast<double>(at.maxBs));
+      if (cut[piece.clusterOf(v)] || piece.toCutFace_mm(v) <= radius_mm)
       {
-        floor_mm = std::min(floor_mm, static_cast<double>(piece.ssOf(v)) - window_mm);
+        top_mm = piece.ssOf(v) - kAnswerWindow_bands * grid.bandWidth; // still at the face
       }
-      if (clusters[piece.clusterOf(v)].band == 0 || piece.ssOf(v) < floor_mm)
+      if (at.band == 0 || piece.ssOf(v) < top_mm - kAnswerWindow_radii * radius_mm)
       {
         break; // the root band (both sides of a root meet there) or beyond the window
       }

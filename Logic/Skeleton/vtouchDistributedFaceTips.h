@@ -19,10 +19,13 @@
 // round per owner change along the longest chain, plus one.
 //
 // A face tip's answer: its own descent (no touches) from the face, the first cluster within a few
-// bands of its start, or of the last cluster on the descent that a shared face cuts (a vessel
-// grazing the face, its axis outside: h19j), (kAnswerWindow) that holds a voxel of a crossing
-// chain gives the largest band among those voxels; none: no tip's trace enters the piece there
-// (a loop's second side).
+// bands plus two of the vessel's radii (kAnswerWindow_*) of where the descent leaves the face
+// (its last voxel within a radius of a cut face, or in a cluster a shared face cuts) that holds
+// a voxel of a crossing chain gives the largest band among those voxels; none: no tip's trace
+// enters the piece there (a loop's second side). The radius is the largest BS of the clusters
+// the descent crossed, not the face tip's own: where a vessel crosses the face obliquely that is
+// a sliver at the wall (h19k); where a vessel grazes the face, its axis outside, the descent runs
+// along cut slabs (h19j).
 // Departure (named): tips tied in rank and in their own band (TraceStage) are ordered by cluster
 // index, which differs between a piece and the single run.
 //

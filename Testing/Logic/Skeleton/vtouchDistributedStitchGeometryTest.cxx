@@ -59,6 +59,55 @@ double nearest_mm(const Vec3& p, const QSkeleton& s)
   return best;
 }
 
+/// `s` as text: a line "path P head H tail T" per path (H, T: junction or -1), then a line
+/// "P I x y z radius" per point, then "junction J child C end E parent P point I" per junction.
+void dumpSkeleton(const std::string& file, const QSkeleton& s)
+{
+  std::ofstream out(file);
+  for (std::size_t p = 0; p < s.paths.size(); ++p)
+  {
+    const SkeletonPath& path = s.paths[p];
+    out << "path " << p << " head " << path.head.junction << " tail " << path.tail.junction << "\n";
+    for (std::size_t i = 0; i < path.points.size(); ++i)
+    {
+      const SkeletonPoint& q = path.points[i];
+      out << p << ' ' << i << ' ' << q.position_World_mm.x << ' ' << q.position_World_mm.y << ' '
+          << q.position_World_mm.z << ' ' << q.radius_mm << "\n";
+    }
+  }
+  for (std::size_t j = 0; j < s.junctions.size(); ++j)
+  {
+    const Junction& k = s.junctions[j];
+    out << "junction " << j << " child " << k.childPath << " end "
+        << (k.childEnd == Junction::End::Head ? 0 : 1) << " parent " << k.parentPath << " point "
+        << k.parentPoint << "\n";
+  }
+}
+
+/// `s`'s voxel chains as text: "P I x y z cx cy cz radius" per point (whole voxel index, the
+/// coder's centre before the geometry stage), after a line "path P head H tail T".
+void dumpRawSkeleton(const std::string& file, const RawSkeleton& s)
+{
+  std::ofstream out(file);
+  for (std::size_t p = 0; p < s.paths.size(); ++p)
+  {
+    const RawSkeletonPath& path = s.paths[p];
+    out << "path " << p << " head " << path.headJunction << " tail " << path.tailJunction << "\n";
+    for (std::size_t i = 0; i < path.voxels.size(); ++i)
+    {
+      out << p << ' ' << i << ' ' << path.voxels[i][0] << ' ' << path.voxels[i][1] << ' '
+          << path.voxels[i][2] << ' ' << path.center_mm[i][0] << ' ' << path.center_mm[i][1] << ' '
+          << path.center_mm[i][2] << ' ' << path.radius_mm[i] << "\n";
+    }
+  }
+  for (std::size_t j = 0; j < s.junctions.size(); ++j)
+  {
+    const RawJunction& k = s.junctions[j];
+    out << "junction " << j << " child " << k.childPath << " end " << (k.childTail ? 1 : 0)
+        << " parent " << k.parentPath << " point " << k.parentPoint << "\n";
+  }
+}
+
 /// Every stitched point beyond the tolerance from the single run is a point of its owner's own
 /// skeleton (the stitch moved nothing there); printed with its distance and owner.
 void expectDeparturesAreTheOwnersCoding(const char* scene, const test::DistributedStitchRun& run)
@@ -200,7 +249,10 @@ TEST(DistributedStitchGeometry, VesselsAlongAFaceAreTheSingleRunsAsOnOnePiece)
 ///   VESSELTOUCH_STITCH_VOLUME=tree.nrrd VESSELTOUCH_STITCH_SPLIT="1 2 2"
 ///     vtouchDistributedStitchGeometryTests --gtest_also_run_disabled_tests
 ///     --gtest_filter='*DISABLED_AVolumeFromAFile'
-/// (threshold 500, the ghost margin of LargestVesselRadius 0: 10 voxels, 73).
+/// (threshold 500, the ghost margin of LargestVesselRadius 0: 10 voxels, 73). With
+/// VESSELTOUCH_STITCH_DUMP=dir it also writes every skeleton as text there (single, stitched,
+/// each rank's, and the single run's and each rank's coder output before ToWorld, raw*.txt:
+/// whole voxel indices), to tell a coding cause (raw chains differ) from a fit cause.
 TEST(DistributedStitchGeometry, DISABLED_AVolumeFromAFile)
 {
   const char* path = std::getenv("VESSELTOUCH_STITCH_VOLUME");
@@ -243,6 +295,23 @@ TEST(DistributedStitchGeometry, DISABLED_AVolumeFromAFile)
   for (const std::string& note : run.report.notes)
   {
     std::printf("  %s\n", note.c_str());
+  }
+  std::printf("root voxel (%lld, %lld, %lld)\n",
+    static_cast<long long>(run.root[0]),
+    static_cast<long long>(run.root[1]),
+    static_cast<long long>(run.root[2]));
+  if (const char* dir = std::getenv("VESSELTOUCH_STITCH_DUMP"))
+  {
+    // For tracing a departure by hand: every skeleton as text (dumpSkeleton's format).
+    dumpSkeleton(std::string(dir) + "/single.txt", run.single);
+    dumpSkeleton(std::string(dir) + "/stitched.txt", run.stitched);
+    dumpRawSkeleton(std::string(dir) + "/rawsingle.txt", run.rawSingle);
+    for (std::size_t r = 0; r < run.pieces.size(); ++r)
+    {
+      dumpSkeleton(std::string(dir) + "/piece" + std::to_string(r) + ".txt", run.pieces[r]);
+      dumpRawSkeleton(
+        std::string(dir) + "/rawpiece" + std::to_string(r) + ".txt", run.rawPieces[r]);
+    }
   }
 }
 

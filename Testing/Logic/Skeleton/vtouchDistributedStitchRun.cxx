@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -60,7 +61,11 @@ Filter::Pointer coder(FloatImage* image, double lower)
   filter->SetLowerThreshold(lower);
   filter->SetMinimumComponentSize(100);
   filter->SetMinimumBranchLength(2.5);
-  filter->SetSmoothingWindow(0.0);
+  // VesselCenterline's automatic windows (0); a diagnostic may fix them for every path
+  // (VESSELTOUCH_STITCH_SMOOTHING, mm: the windows then do not depend on a path's median radius,
+  // which a rank sees only for its part of a path, Docs/CLIENT-SERVER.md).
+  const char* smoothing = std::getenv("VESSELTOUCH_STITCH_SMOOTHING");
+  filter->SetSmoothingWindow(smoothing ? std::atof(smoothing) : 0.0);
   filter->SetDownsampleFactor(0);
   return filter;
 }
@@ -127,7 +132,8 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   }
   single->Update();
   run.single = single->GetSkeleton();
-  const RawSkeleton& raw = single->GetRawSkeleton();
+  run.rawSingle = single->GetRawSkeleton();
+  const RawSkeleton& raw = run.rawSingle;
   std::vector<Index> roots;
   if (seeded)
   {
@@ -153,6 +159,7 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   run.root = roots.front();
   // Every rank: its grown piece coded with the single run's field (the filter's hook).
   const std::vector<PieceLayout> layout = layouts(dims, counts, ghost_voxels);
+  run.rawPieces.resize(layout.size());
   run.pieces = onEveryRank<QSkeleton>(layout,
     [&](const PieceLayout& l, RankCollectives& c, QSkeleton& out)
     {
@@ -171,6 +178,15 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
         });
       filter->Update();
       out = filter->GetSkeleton();
+      RawSkeleton& raw = run.rawPieces[static_cast<std::size_t>(l.rank)];
+      raw = filter->GetRawSkeleton();
+      for (RawSkeletonPath& path : raw.paths)
+      {
+        for (std::array<std::int64_t, 3>& v : path.voxels)
+        {
+          v = l.toWhole(v);
+        }
+      }
     });
   // Clip and stitch as DistributedCenterline::gatherAndStitch (1 mm voxels).
   const VoxelExtent6 wholeExtent{ 0, int(dims[0] - 1), 0, int(dims[1] - 1), 0, int(dims[2] - 1) };

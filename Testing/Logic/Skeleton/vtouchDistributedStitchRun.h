@@ -12,6 +12,7 @@
 #include "vtouchQSkeleton.h"
 #include "vtouchRoundsOutcome.h"
 #include "vtouchSkeletonStitcher.h"
+#include "vtouchVoxelCoding.h"
 
 #include <array>
 #include <cstdint>
@@ -27,6 +28,8 @@ struct DistributedStitchRun
   QSkeleton single;                   ///< the single run (the whole volume, unseeded or seeded)
   std::vector<QSkeleton> pieces;      ///< each rank's own skeleton, world frame, unclipped
   QSkeleton stitched;                 ///< the pieces clipped and stitched
+  RawSkeleton rawSingle;              ///< the single run's coder output (whole voxel indices)
+  std::vector<RawSkeleton> rawPieces; ///< each rank's coder output (voxels: whole indices)
   StitchReport report;                ///< what the stitch did
   PieceOwnership ownership;           ///< the executive's split
   std::array<std::int64_t, 3> root{}; ///< the single run's (first) root voxel
