@@ -216,9 +216,16 @@ ChainEnds walkChain(const std::vector<SkeletonFragment>& f,
 /// The nearest point of `s` to `p` but path `self`'s points within 2 of index `selfPoint`.
 /// Among points at the same distance (the coder writes a path's last point twice where a child
 /// hangs on it), a path's end wins (a project rule): the single run hangs the child on the end,
-/// and a child hung one point before it would leave that end a free vessel end.
+/// and a child hung one point before it would leave that end a free vessel end. Then the point
+/// whose radius is nearest `radius_mm`, the child end's (a project rule): the child's end is a
+/// copy of its parent point, radius included, while consecutive voxels of one cluster share its
+/// centre (the distributed run stitches the coder's centres, whole paths smoothed afterwards).
+/// Never another path's attached end (`ends`): it is a copy of its own parent point, where two
+/// branches leave one point the other branch's head lies on the parent point too.
 bool nearestPoint(const QSkeleton& s,
+  const std::vector<ChainEnds>& ends,
   const Vec3& p,
+  double radius_mm,
   int self,
   long selfPoint,
   int& path,
@@ -227,6 +234,7 @@ bool nearestPoint(const QSkeleton& s,
 {
   d = std::numeric_limits<double>::infinity();
   bool atEnd = false;
+  double radiusOff = std::numeric_limits<double>::infinity();
   for (const SkeletonPath& candidate : s.paths)
   {
     for (std::size_t i = 0; i < candidate.points.size(); ++i)
@@ -235,14 +243,23 @@ bool nearestPoint(const QSkeleton& s,
       {
         continue;
       }
+      const bool head = i == 0, tail = i + 1 == candidate.points.size();
+      const ChainEnds& e = ends[static_cast<std::size_t>(candidate.id)];
+      if (candidate.id != self && ((head && e.head.kind == FragmentEnd::Kind::Attached) ||
+                                    (tail && e.tail.kind == FragmentEnd::Kind::Attached)))
+      {
+        continue;
+      }
       const double di = (candidate.points[i].position_World_mm - p).norm();
-      const bool end = i == 0 || i + 1 == candidate.points.size();
-      if (di < d || (di == d && end && !atEnd))
+      const bool end = head || tail;
+      const double off = std::abs(candidate.points[i].radius_mm - radius_mm);
+      if (di < d || (di == d && end && !atEnd) || (di == d && end == atEnd && off < radiusOff))
       {
         d = di;
         path = candidate.id;
         point = static_cast<int>(i);
         atEnd = end;
+        radiusOff = off;
       }
     }
   }
@@ -489,7 +506,15 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
       int parentPath = -1, parentPoint = -1;
       double d = 0.0;
       const bool found =
-        nearestPoint(s, end.position_World_mm, path.id, index, parentPath, parentPoint, d);
+        nearestPoint(s,
+          chainEnds,
+          end.position_World_mm,
+          q.radius_mm,
+          path.id,
+          index,
+          parentPath,
+          parentPoint,
+          d);
       if (!found || d > std::max(joinTolerance_mm, 0.5 * q.radius_mm))
       {
         ++report.attachmentsUnresolved;

@@ -7,6 +7,7 @@
 #include "vtouchCurveGeometry.h"
 #include "vtouchSeedVoxel.h"
 #include "vtouchSinglePointPaths.h"
+#include "vtouchSkeletonPathSmoothing.h"
 
 #include <itkCommand.h>
 #include <itkHessianToObjectnessMeasureImageFilter.h>
@@ -336,16 +337,6 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
   }
   QSkeleton s;
   s.paths.resize(raw.paths.size());
-  // A path may turn into a branch where another path joins it (the trace runs from a vessel into
-  // its branch): no smoothing window spans such a point, or the fit would cut the corner.
-  std::vector<std::vector<std::size_t>> corners(raw.paths.size());
-  for (const RawJunction& rj : raw.junctions)
-  {
-    if (rj.parentPath >= 0 && static_cast<std::size_t>(rj.parentPath) < corners.size())
-    {
-      corners[rj.parentPath].push_back(static_cast<std::size_t>(rj.parentPoint));
-    }
-  }
   for (std::size_t p = 0; p < raw.paths.size(); ++p)
   {
     const RawSkeletonPath& rp = raw.paths[p];
@@ -365,18 +356,6 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
       path.points[i].position_World_mm = Vec3{ w[0], w[1], w[2] };
       path.points[i].radius_mm = rp.radius_mm[i];
     }
-    std::vector<double> radii = rp.radius_mm;
-    std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-    // The windows scale with the vessel (skeletonPathWindows, shared with the tube-section
-    // tracker's re-smoothing).
-    const double medianRadius = radii[radii.size() / 2];
-    const CurveGeometryWindows windows =
-      skeletonPathWindows(medianRadius, maxSpacing, this->m_SmoothingWindow);
-    applyCurveGeometry(path, windows, corners[p]);
-    path.points.front().label =
-      rp.headJunction >= 0 ? PointLabel::Bifurcation : PointLabel::EndPoint;
-    path.points.back().label =
-      rp.tailJunction >= 0 ? PointLabel::Bifurcation : PointLabel::EndPoint;
   }
   for (const RawJunction& rj : raw.junctions)
   {
@@ -386,13 +365,10 @@ QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw
     j.parentPath = rj.parentPath;
     j.parentPoint = rj.parentPoint;
     s.junctions.push_back(j);
-    SkeletonPoint& parent = s.paths[rj.parentPath].points[rj.parentPoint];
-    parent.label = PointLabel::Bifurcation;
-    // Each path is smoothed alone: make the attached end coincide with its parent point again.
-    SkeletonPath& child = s.paths[rj.childPath];
-    SkeletonPoint& end = rj.childTail ? child.points.back() : child.points.front();
-    end.position_World_mm = parent.position_World_mm;
   }
+  // The centres smoothed path by path (one function with the distributed run's first rank,
+  // which smooths the stitched whole paths: smoothSkeletonPaths).
+  smoothSkeletonPaths(s, maxSpacing, this->m_SmoothingWindow);
   return s;
 }
 

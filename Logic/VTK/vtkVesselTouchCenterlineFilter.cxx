@@ -10,6 +10,7 @@
 #include "vtouchRangeForeground.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchSeedComponentSplit.h"
+#include "vtouchSkeletonPathSmoothing.h"
 #include "vtouchVolumeSkeletonizer.h"
 
 #include "vtkCellArray.h"
@@ -305,7 +306,7 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
           this->MinimumComponentSize, this->GetGhostMarginVoxels(input->GetSpacing()))
       : this->MinimumComponentSize,
     this->MinimumBranchLength,
-    this->SmoothingWindow,
+    this->DeferPathSmoothing ? vtouch::kPositionsKeptWindow_mm : this->SmoothingWindow,
     this->UseVesselness,
     this->VesselnessSigmaMinimum,
     this->VesselnessSigmaMaximum,
@@ -589,6 +590,27 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       {
         this->AddRestOfRegion(inputVector, input, rest, skeleton);
       }
+    };
+  }
+  // The whole paths smoothed on the first rank (issue 19 item 2): the smoothing windows scale
+  // with a path's median radius, and a rank sees only its part of a path that crosses pieces
+  // (the 256^3 scaling tree: 4 points 0.16 voxel off at a bend with each rank's own windows).
+  // In the modes coded with the global field, whose ranks' centres are the single run's; the
+  // raw modes' tube tracker and pruning work on each piece's smoothed skeleton, so there each
+  // rank still smooths its own part (a departure, Docs/CLIENT-SERVER.md).
+  this->DeferPathSmoothing = !raw && (globalSeedCode || globalRootCode);
+  struct DeferReset
+  {
+    bool& flag;
+    ~DeferReset() { this->flag = false; }
+  } deferReset{ this->DeferPathSmoothing };
+  if (this->DeferPathSmoothing)
+  {
+    hooks.afterStitch = [this](vtouch::QSkeleton& stitched, const vtouch::IndexFrame& frame)
+    {
+      vtouch::smoothSkeletonPaths(stitched,
+        *std::max_element(frame.spacing_mm.begin(), frame.spacing_mm.end()),
+        this->SmoothingWindow);
     };
   }
   const vtouch::DistributedRequest::Outcome outcome =

@@ -138,6 +138,10 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   outcome.firstRank = true;
   if (!result.skeleton.empty())
   {
+    if (hooks.afterStitch)
+    {
+      hooks.afterStitch(result.skeleton, frame);
+    }
     // (An empty skeleton's zero-tuple topology arrays would make the client lose every field
     // array on the way, the message with them.)
     hooks.fill(result.skeleton, output);

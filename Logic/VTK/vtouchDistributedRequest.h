@@ -57,6 +57,10 @@ public:
     /// Optional: runs after the piece was coded (`own`, its polydata) and read into `skeleton`,
     /// on ranks with an input; may add to both.
     std::function<void(vtkImageData* input, vtkPolyData* own, QSkeleton& skeleton)> afterPiece;
+    /// Optional: runs on the first rank on the stitched skeleton (not empty) before `fill`, with
+    /// the volume's frame (the whole paths' smoothing of the modes whose ranks keep their
+    /// centres, smoothSkeletonPaths).
+    std::function<void(QSkeleton& stitched, const IndexFrame& frame)> afterStitch;
   };
   /// What the run says; the filter reports it with its own macros.
   struct Outcome

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <utility>
 #include <numeric>
 
 namespace
@@ -104,6 +106,73 @@ TEST(SkeletonStitcher, AChildOnAPathsRepeatedLastPointHangsOnTheEnd)
   EXPECT_EQ(s.validate(), "");
   EXPECT_EQ(report.attachmentsResolved, 2);
   EXPECT_EQ(freeEnds(s), 3);
+  EXPECT_EQ(cycleRank(s), 0);
+}
+
+/// The parent point of the junction whose child is path `child` (-1, -1 when none).
+std::pair<int, int> parentOf(const QSkeleton& s, int child)
+{
+  for (const Junction& j : s.junctions)
+  {
+    if (j.childPath == child)
+    {
+      return { j.parentPath, j.parentPoint };
+    }
+  }
+  return { -1, -1 };
+}
+
+TEST(SkeletonStitcher, BranchesOnOneOfTwoPointsWithOneCentreHangOnTheirOwnParentPoint)
+{
+  // The coder's centres, as a distributed run stitches them before smoothing the whole paths
+  // (issue 19 item 2): consecutive voxels of one cluster share its centre, so a trunk has two
+  // points at (6, 10, 5), radii 1 and 2, and two branches leave the second (their heads copies
+  // of it, radius 2; the 256^3 and 512 x 512 x 256 scaling trees). Each branch must hang on that
+  // trunk point, not on the other branch's head (an end at the same distance, which the end rule
+  // preferred) nor on the trunk's other point with that centre (the first found).
+  QSkeleton whole;
+  std::vector<SkeletonPoint> trunk, up, down;
+  for (int i = 0; i < 19; ++i)
+  {
+    const double x = i < 6 ? 1.0 + i : (i == 6 ? 6.0 : 0.0 + i); // points 5 and 6 share (6, 10)
+    trunk.push_back(point(x, 10.0, 5.0, i == 5 ? 1.0 : 2.0));
+  }
+  for (int i = 0; i < 7; ++i)
+  {
+    up.push_back(point(6.0 - 0.5 * i, 10.0 + 0.8 * i, 5.0, i == 0 ? 2.0 : 1.0));
+    down.push_back(point(6.0 - 0.5 * i, 10.0 - 0.8 * i, 5.0, i == 0 ? 2.0 : 1.0));
+  }
+  whole.paths.push_back(path(0, trunk));
+  whole.paths.push_back(path(1, up));
+  whole.paths.push_back(path(2, down));
+  attach(whole, 1, Junction::End::Head, 0, 6);
+  attach(whole, 2, Junction::End::Head, 0, 6);
+  ASSERT_EQ(whole.validate(), "");
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  ASSERT_EQ(s.paths.size(), 3u);
+  EXPECT_EQ(report.attachmentsResolved, 2);
+  // The trunk is the stitched path of 19 points; both branches hang on its point 6 (12 when the
+  // stitch runs it the other way).
+  int trunkId = -1;
+  for (const SkeletonPath& p : s.paths)
+  {
+    trunkId = p.points.size() == 19u ? p.id : trunkId;
+  }
+  ASSERT_GE(trunkId, 0);
+  const bool reversed =
+    s.paths[static_cast<std::size_t>(trunkId)].points.front().position_World_mm.x > 10.0;
+  std::printf("trunk %s\n", reversed ? "reversed" : "as coded");
+  const int expected = reversed ? 12 : 6;
+  for (const SkeletonPath& p : s.paths)
+  {
+    if (p.id != trunkId)
+    {
+      EXPECT_EQ(parentOf(s, p.id), std::make_pair(trunkId, expected)) << "branch " << p.id;
+    }
+  }
+  EXPECT_EQ(freeEnds(s), 4);
   EXPECT_EQ(cycleRank(s), 0);
 }
 

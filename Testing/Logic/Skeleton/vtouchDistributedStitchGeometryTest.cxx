@@ -108,25 +108,30 @@ void dumpRawSkeleton(const std::string& file, const RawSkeleton& s)
   }
 }
 
-/// Every stitched point beyond the tolerance from the single run is a point of its owner's own
-/// skeleton (the stitch moved nothing there); printed with its distance and owner.
+/// Every stitched point beyond the tolerance from the single run is, before the whole paths'
+/// smoothing, a centre of its owner's own skeleton (the stitch moved nothing there); printed
+/// with its distance and owner.
 void expectDeparturesAreTheOwnersCoding(const char* scene, const test::DistributedStitchRun& run)
 {
   int departing = 0;
-  for (const SkeletonPath& path : run.stitched.paths)
+  ASSERT_EQ(run.stitched.paths.size(), run.stitchedCentres.paths.size());
+  for (std::size_t pi = 0; pi < run.stitched.paths.size(); ++pi)
   {
-    for (const SkeletonPoint& q : path.points)
+    const SkeletonPath& path = run.stitched.paths[pi];
+    ASSERT_EQ(path.points.size(), run.stitchedCentres.paths[pi].points.size());
+    for (std::size_t i = 0; i < path.points.size(); ++i)
     {
-      const Vec3& p = q.position_World_mm;
+      const Vec3& p = path.points[i].position_World_mm;
       const double d = nearest_mm(p, run.single);
       if (d <= kTolerance_voxels)
       {
         continue;
       }
       ++departing;
-      const int owner = run.ownership.owner(p);
+      const Vec3& centre = run.stitchedCentres.paths[pi].points[i].position_World_mm;
+      const int owner = run.ownership.owner(centre);
       ASSERT_GE(owner, 0);
-      const double own = nearest_mm(p, run.pieces[static_cast<std::size_t>(owner)]);
+      const double own = nearest_mm(centre, run.pieces[static_cast<std::size_t>(owner)]);
       std::printf("%s: stitched point (%.2f, %.2f, %.2f) %.3f voxel from the single run, owned "
                   "by rank %d, %.1e from its own skeleton\n",
         scene,

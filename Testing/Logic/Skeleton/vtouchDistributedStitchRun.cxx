@@ -7,6 +7,7 @@
 #include "vtouchPieceGrid.h"
 #include "vtouchSkeletonClipper.h"
 #include "vtouchSkeletonOverlapResolver.h"
+#include "vtouchSkeletonPathSmoothing.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
 
 #include <itkImage.h>
@@ -53,6 +54,15 @@ FloatImage::Pointer imageOf(const std::vector<float>& voxels,
   return image;
 }
 
+/// VesselCenterline's SmoothingWindow: its automatic windows (0); a diagnostic may fix them for
+/// every path (VESSELTOUCH_STITCH_SMOOTHING, mm: the windows then do not depend on a path's
+/// median radius).
+double smoothingWindow_mm()
+{
+  const char* smoothing = std::getenv("VESSELTOUCH_STITCH_SMOOTHING");
+  return smoothing ? std::atof(smoothing) : 0.0;
+}
+
 /// VesselCenterline's coder settings (its defaults, thresholded from `lower`).
 Filter::Pointer coder(FloatImage* image, double lower)
 {
@@ -61,11 +71,7 @@ Filter::Pointer coder(FloatImage* image, double lower)
   filter->SetLowerThreshold(lower);
   filter->SetMinimumComponentSize(100);
   filter->SetMinimumBranchLength(2.5);
-  // VesselCenterline's automatic windows (0); a diagnostic may fix them for every path
-  // (VESSELTOUCH_STITCH_SMOOTHING, mm: the windows then do not depend on a path's median radius,
-  // which a rank sees only for its part of a path, Docs/CLIENT-SERVER.md).
-  const char* smoothing = std::getenv("VESSELTOUCH_STITCH_SMOOTHING");
-  filter->SetSmoothingWindow(smoothing ? std::atof(smoothing) : 0.0);
+  filter->SetSmoothingWindow(smoothingWindow_mm());
   filter->SetDownsampleFactor(0);
   return filter;
 }
@@ -165,6 +171,9 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
     {
       FloatImage::Pointer piece = imageOf(voxels, dims, l.mine());
       Filter::Pointer filter = coder(piece, lower);
+      // The centres kept: the whole paths are smoothed after the stitch, as the filter's first
+      // rank does (smoothSkeletonPaths).
+      filter->SetSmoothingWindow(kPositionsKeptWindow_mm);
       // The face tips' order across the pieces, as the filter's DistributedGlobalField gives it.
       DistributedFaceTips faceTips(c, l);
       filter->SetGlobalFaceTips(
@@ -207,7 +216,9 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   stitcher.copyReach_mm = kCopyReachVoxels;
   stitcher.coverageReach_mm = kCopyReachVoxels;
   stitcher.coincidentPoint_mm = kCoincidentPointVoxels;
-  run.stitched = stitcher.stitch(all, run.report);
+  run.stitchedCentres = stitcher.stitch(all, run.report);
+  run.stitched = run.stitchedCentres;
+  smoothSkeletonPaths(run.stitched, 1.0, smoothingWindow_mm()); // the coder's (coder())
   return run;
 }
 

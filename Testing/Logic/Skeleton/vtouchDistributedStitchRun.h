@@ -4,6 +4,8 @@
 // face tips' order across the pieces (DistributedFaceTips, as the filter's second hook),
 // clips it to its owned box and the overlap band (SkeletonClipper, kOverlapBandVoxels) and the
 // pieces are stitched (SkeletonStitcher, configured as DistributedCenterline::gatherAndStitch).
+// As the filter, the ranks keep their centres (positions unsmoothed) and the stitched whole
+// paths are smoothed (smoothSkeletonPaths).
 // What the geometry tests compare with the single run: the stitched skeleton and, to tell a
 // coding cause from a stitching one, each rank's own unclipped skeleton.
 #pragma once
@@ -27,7 +29,8 @@ struct DistributedStitchRun
 {
   QSkeleton single;                   ///< the single run (the whole volume, unseeded or seeded)
   std::vector<QSkeleton> pieces;      ///< each rank's own skeleton, world frame, unclipped
-  QSkeleton stitched;                 ///< the pieces clipped and stitched
+  QSkeleton stitchedCentres;          ///< the pieces clipped and stitched: the ranks' centres
+  QSkeleton stitched;                 ///< the same, its whole paths smoothed (the output)
   RawSkeleton rawSingle;              ///< the single run's coder output (whole voxel indices)
   std::vector<RawSkeleton> rawPieces; ///< each rank's coder output (voxels: whole indices)
   StitchReport report;                ///< what the stitch did
