@@ -20,8 +20,9 @@
 //  5. "no vessel-like structure": the region's voxel count summed over the ranks' owned voxels;
 //  6. depth (RegionDepth): local (a voxel's depth is exact when the piece edge is farther than
 //     it); the largest depth, which sets the tubularity's largest scale, is the ranks' maximum;
-//  7. tubularity: local, at the common scales (its tiles and coarse grids start at the piece's
-//     first voxel, not the volume's: values differ by resampling; a departure);
+//  7. tubularity: DistributedTubularity, at the common scales, its tiles and coarse grids on the
+//     whole volume's lattice and the blocks of a tile's box beyond the piece from their holders:
+//     the single run's at every site whose depth the piece decides as the single run (h19t);
 //  8. neck cutting's kept voxels: local (a core's reach is its depth + 1); whether any core
 //     exists: summed over the ranks (global);
 //  9. the seed's kept voxel: on the seed's rank, sent to all (global verdict);
@@ -40,6 +41,7 @@
 
 #include "vtouchDimStrandPruner.h"
 #include "vtouchDistributedRegionGrowth.h"
+#include "vtouchDistributedTubularity.h"
 #include "vtouchDistributedVolumeRange.h"
 #include "vtouchHeldRegionFromOwners.h"
 #include "vtouchIntensityRangeEstimator.h"
@@ -82,6 +84,10 @@ public:
     std::uint64_t reportedVoxels = 0; ///< voxels this rank sent, both growths
     /// Without a seed: this rank's held voxels whose decision its owner's changed (step 9).
     std::uint64_t heldVoxelsFromOwners = 0;
+    /// The tubularity's block means this rank took from others (DistributedTubularity), and the
+    /// blocks nobody held whole (0 unless the ghost margin is narrower than a coarse block).
+    std::uint64_t tubularityBlocksReceived = 0;
+    std::uint64_t tubularityBlocksNotExact = 0;
   };
 
   /// `piece` is this rank's held box of the volume (layout.mine()), `seed` the seed's voxel in
@@ -349,8 +355,11 @@ DistributedCandidateRegion::Result DistributedCandidateRegion::extract(const Vol
       std::min<int>(s.maximumDepth_voxels, static_cast<int>(collectives.maximum(localDeepest)));
     const RestrictedTubularity::Parameters tp =
       VesselCandidateRegion::tubularityParameters(s, r.range, deepest, piece.spacing_mm);
-    const RestrictedTubularity::Result tube =
-      RestrictedTubularity::compute(piece, region, depth, tp);
+    const DistributedTubularity::Result measured =
+      DistributedTubularity::compute(piece, layout, region, depth, tp, collectives);
+    const RestrictedTubularity::Result& tube = measured.tube;
+    out.tubularityBlocksReceived = measured.blocksReceived;
+    out.tubularityBlocksNotExact = tube.blocksNotExact;
     lap("tubularity");
     TubeNeckCutter::Result cut = TubeNeckCutter::cut(
       region, depth, tube.tubularity, s.coreTubularity, s.thinCoreTubularity, nullptr);

@@ -1,7 +1,7 @@
 // One whole region from the ranks' pieces (issue 19 item 2): each rank decides its candidate
 // region on its held piece, but the ranks holding a voxel of the ghost margin may decide it
-// differently (the depth and the tubularity near a piece's edge see less of the volume there,
-// and the tubularity's grids start at each piece's first voxel). The automatic roots across the
+// differently (the depth and the neck cut near a piece's edge see less of the volume there; the
+// tubularity is the single run's wherever it can decide an owned voxel, DistributedTubularity). The automatic roots across the
 // ranks (DistributedRootChoice) need every rank's held mask to be its part of ONE whole mask.
 // Project rule: a voxel is what its owner decided (the owner sees at least the ghost margin
 // around it); every rank takes its held, not owned voxels from their owners.

@@ -246,11 +246,9 @@ TEST(DistributedRawUnseeded, RegionIsTheSingleRunsOnOwnedVoxelsAndHeldVoxelsAreT
       owned += r.ownedRegion;
       fromOwners += r.fromOwners;
     }
-    // The tubularity's coarse grids and tiles start at each piece's first voxel, not the
-    // volume's (a departure, Docs/CLIENT-SERVER.md): a few voxels at a core level's edge are
-    // decided the other way. Bound: 1 % of the single run's region (measured below it).
-    EXPECT_LE(differ, static_cast<int>(single.mask.vesselCount() / 100))
-      << pieces << " pieces: owned voxels differ from the single run";
+    // Every owned voxel as the single run decides it (24-55 of 10221 differed while the
+    // tubularity's grids started at each piece's first voxel; DistributedTubularity, h19t).
+    EXPECT_EQ(differ, 0) << pieces << " pieces: owned voxels differ from the single run";
     EXPECT_NEAR(static_cast<double>(owned),
       static_cast<double>(single.mask.vesselCount()),
       static_cast<double>(single.mask.vesselCount() / 100));
@@ -366,8 +364,7 @@ TEST(DistributedRawUnseeded, RankWithAnEmptyPieceJoinsEveryCollective)
   EXPECT_EQ(ranks[2].mask.vesselCount(), 0U);
   ranks.pop_back(); // compare() walks held boxes: the empty rank has none
   compare(ranks, g, single.mask);
-  EXPECT_LE(
-    ranks[0].ownedDiffer + ranks[1].ownedDiffer, static_cast<int>(single.mask.vesselCount() / 100));
+  EXPECT_EQ(ranks[0].ownedDiffer + ranks[1].ownedDiffer, 0);
 }
 
 TEST(HeldRegionFromOwners, HeldVoxelsTakeTheOwnersDecisionAndTheChangesAreCounted)

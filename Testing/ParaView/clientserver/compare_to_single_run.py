@@ -109,7 +109,7 @@ def nearest(points, x):
 
 
 def run_filter(volume, args, distributed, ranks):
-    options = dict(AutomaticIntensityRange=0, LowerThreshold=args.lower,
+    options = dict(AutomaticIntensityRange=1 if args.automatic else 0, LowerThreshold=args.lower,
                    UpperThreshold=args.upper, DistributedExtraction=1 if distributed else 0)
     if args.radius > 0:
         options["LargestVesselRadius"] = args.radius
@@ -229,6 +229,8 @@ def main():
     parser.add_argument("--lower", type=float, default=None,
                         help="LowerThreshold (default 550 for a phantom, 500 for a volume)")
     parser.add_argument("--upper", type=float, default=65535.0)
+    parser.add_argument("--automatic", action="store_true",
+                        help="AutomaticIntensityRange (the raw modes; --lower, --upper unused)")
     parser.add_argument("--radius", type=float, default=None,
                         help="LargestVesselRadius, mm (default 3.2 for a phantom, 0 = automatic)")
     parser.add_argument("--near-root", type=float, default=4.0,

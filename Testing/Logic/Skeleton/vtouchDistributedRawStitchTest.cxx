@@ -1,0 +1,122 @@
+// The raw mode without a seed across pieces, coded and stitched (issue 19 item 2, issue 16 item
+// 1; h19t): ranks as threads decide the candidate region together (DistributedCandidateRegion:
+// the range, the threshold, depth, the tubularity on the whole volume's lattice, the neck cut,
+// the held voxels from their owners), which is the single run's on every held voxel (asserted);
+// that region coded with the single run's field and stitched (vtouchDistributedStitchRun.h)
+// against the single run's skeleton of it (on one piece exactly; on 2 and 4 pieces within 2
+// voxels, not yet 0.1: the coder's ends, below), on a 112^3 raw phantom (the recipe
+// ClientServer.DistributedRawSeeded uses). The per-piece tube tracker and pruning after the coder
+// (RawSkeletonRefinement) are not part of this harness: Docs/CLIENT-SERVER.md measures them
+// through the pvserver.
+#include "vtouchDistributedCandidateRegion.h"
+#include "vtouchDistributedStitchRun.h"
+#include "vtouchEveryRank.h"
+#include "vtouchPhantomGenerator.h"
+#include "vtouchPieceGrid.h"
+#include "vtouchPieceOwnership.h"
+#include "vtouchRankPiece.h"
+
+#include <gtest/gtest.h>
+#include <itkMultiThreaderBase.h>
+
+#include <cstdio>
+#include <vector>
+
+namespace vtouch
+{
+namespace
+{
+
+TEST(DistributedRawStitch, TheRawRegionIsTheSingleRunsOnTwoAndFourPiecesAndItsStitchWithinTwoVoxels)
+{
+  itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(1); // ITK on each rank's own thread
+  PhantomSpec spec; // the raw angiogram: 112^3, 60 segments, 4 clutter objects, seed 3, noise 10
+  spec.noiseStdDev = 10.0;
+  spec.shape = PhantomShape::RawAngiogram;
+  spec.dimensions = { 112, 112, 112 };
+  spec.angiogramSegments = 60;
+  spec.clutterCount = 4;
+  spec.seed = 3;
+  const PhantomGenerator generator(spec);
+  ASSERT_TRUE(generator.ok()) << generator.error();
+  const std::array<std::int64_t, 3> dims{ 112, 112, 112 };
+  std::vector<float> voxels(112U * 112U * 112U);
+  ASSERT_TRUE(generator.fill(voxels.data()));
+  VolumeView<float> whole;
+  whole.voxels = voxels.data();
+  whole.dims = dims;
+  const VesselCandidateRegion::Settings s; // automatic, tubes only, no seed
+  const VesselCandidateRegion::Result single = VesselCandidateRegion::extract(whole, s);
+  ASSERT_TRUE(single.ok) << single.message;
+  // The region as a volume the coder thresholds (1000 inside, 0 outside).
+  std::vector<float> region(voxels.size(), 0.0F);
+  single.mask.forEach([&region](std::uint64_t lin) { region[lin] = 1000.0F; });
+  GhostMarginRule rule; // LargestVesselRadius 4 voxels, as the client/server test
+  rule.largestRadius_mm = 4.0;
+  const int margin = rule.voxels({ 1.0, 1.0, 1.0 });
+  ASSERT_EQ(margin, 31);
+  for (const std::array<int, 3>& counts :
+    { std::array<int, 3>{ 1, 1, 1 }, { 1, 1, 2 }, { 1, 2, 2 } })
+  {
+    const int pieces = counts[0] * counts[1] * counts[2];
+    // Every rank's region, decided across the ranks, is the single run's on its held box.
+    const std::vector<int> differ = test::onEveryRank<int>(test::layouts(dims, counts, margin),
+      [&](const PieceLayout& l, RankCollectives& c, int& mine)
+      {
+        const test::RankPiece piece(voxels, dims, l);
+        const DistributedCandidateRegion::Result r =
+          DistributedCandidateRegion::extract(piece.view, l, { -1, -1, -1 }, s, c);
+        ASSERT_TRUE(r.region.ok) << r.region.message;
+        EXPECT_EQ(r.tubularityBlocksNotExact, 0U);
+        const SparseVesselMask expected = test::pieceMask(single.mask, l);
+        const std::array<std::int64_t, 3> d = l.pieceDims();
+        for (std::uint64_t lin = 0; lin < static_cast<std::uint64_t>(d[0] * d[1] * d[2]); ++lin)
+        {
+          mine += r.region.mask.test(lin) != expected.test(lin) ? 1 : 0;
+        }
+      });
+    for (std::size_t r = 0; r < differ.size(); ++r)
+    {
+      EXPECT_EQ(differ[r], 0) << pieces << " pieces, rank " << r
+                              << ": held voxels not the single run's region";
+    }
+    // That region coded on every rank and stitched, against the single run's skeleton of it.
+    const test::DistributedStitchRun run =
+      test::runDistributedStitch(region, dims, 500.0, counts, margin);
+    const double from = test::farthestPoint_mm(run.stitched, run.single);
+    const double of = test::farthestPoint_mm(run.single, run.stitched);
+    std::printf("%d pieces: %zu / %zu paths, %d / %d free ends, %zu / %zu junctions; farthest "
+                "point from the single run %.3f voxel, of it %.3f voxel\n",
+      pieces,
+      run.stitched.paths.size(),
+      run.single.paths.size(),
+      test::freeEnds(run.stitched),
+      test::freeEnds(run.single),
+      run.stitched.junctions.size(),
+      run.single.junctions.size(),
+      from,
+      of);
+    // One piece (the global field's coding of the whole region): the single run exactly.
+    // Two and four pieces: not yet 0.1 voxel (issue 19 item 2). The departure is the coder's, not
+    // the region's: a path the held box cuts (rank 0 holds 45 of its 52 points) keeps one point
+    // more at its free end, (18.00, 85.99, 45.00) mm, 1.62 voxels past the single run's end, 10
+    // voxels below the face. Traced: EndStage::measureEndCap's tolerance reads the radius at the
+    // path's middle point (radius_mm[at(n / 2)]), another point on the cut path; with the end's
+    // own radius in both runs (an experiment, not kept: it changes the single run) 2 pieces are
+    // within 0.474 voxel and 4 within 0.152. On 4 pieces the stitch also has one free end more,
+    // one junction less (28 / 25, not 27 / 26) and one cut end unmatched. Bounded here by the
+    // client/server tests' 2 voxels; Docs/CLIENT-SERVER.md, "The tubularity across the pieces".
+    const double bound_voxels = pieces == 1 ? 0.1 : 2.0;
+    EXPECT_LE(from, bound_voxels) << pieces << " pieces";
+    EXPECT_LE(of, bound_voxels) << pieces << " pieces";
+    if (pieces <= 2)
+    {
+      EXPECT_EQ(run.report.cutEndsUnmatched, 0);
+      EXPECT_EQ(test::freeEnds(run.stitched), test::freeEnds(run.single)) << pieces << " pieces";
+      EXPECT_EQ(run.stitched.junctions.size(), run.single.junctions.size()) << pieces << " pieces";
+    }
+  }
+}
+
+} // namespace
+} // namespace vtouch
