@@ -9,6 +9,7 @@
 // nearer tip's vessel (leg B) rises straight into the same junction; a thicker trunk (3.5) goes
 // on up to the root. The single run traces A's tip through the junction first (the farther tip).
 #include "vtouchDistributedStitchRun.h"
+#include "vtouchStitchRunExpectations.h"
 #include "vtouchDistributedTestScenes.h"
 #include "vtouchPieceGrid.h"
 
@@ -74,14 +75,7 @@ test::DistributedStitchRun runScene(const char* name, const std::vector<Point_mm
   return run;
 }
 
-void expectSameNetwork(const test::DistributedStitchRun& run)
-{
-  EXPECT_EQ(run.stitched.paths.size(), run.single.paths.size());
-  EXPECT_EQ(test::freeEnds(run.stitched), test::freeEnds(run.single));
-  EXPECT_EQ(run.stitched.junctions.size(), run.single.junctions.size());
-  EXPECT_EQ(run.report.cutEndsUnmatched, 0);
-  EXPECT_EQ(run.report.pointsDropped, 0);
-}
+using test::expectSameNetwork;
 
 TEST(DistributedStitchGeometry, ALegGrazingTheGrownPiecesFaceIsTracedThroughItsJunctionFirst)
 {

@@ -11,6 +11,7 @@
 // the stitched skeleton departs at all, the rank owning the point coded it so (the stitch adds no
 // departure of its own). Docs/CLIENT-SERVER.md, "Where the distributed geometry departs".
 #include "vtouchDistributedStitchRun.h"
+#include "vtouchStitchRunExpectations.h"
 
 #include "vtouchPieceOwnership.h"
 
@@ -153,14 +154,7 @@ void expectDeparturesAreTheOwnersCoding(const char* scene, const test::Distribut
     test::farthestPoint_mm(run.single, run.stitched));
 }
 
-void expectSameNetwork(const test::DistributedStitchRun& run)
-{
-  EXPECT_EQ(run.stitched.paths.size(), run.single.paths.size());
-  EXPECT_EQ(test::freeEnds(run.stitched), test::freeEnds(run.single));
-  EXPECT_EQ(run.stitched.junctions.size(), run.single.junctions.size());
-  EXPECT_EQ(run.report.cutEndsUnmatched, 0);
-  EXPECT_EQ(run.report.pointsDropped, 0);
-}
+using test::expectSameNetwork;
 
 TEST(DistributedStitchGeometry, TheYOnTwoPiecesIsTheSingleRun)
 {
