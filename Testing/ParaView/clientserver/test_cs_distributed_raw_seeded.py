@@ -354,8 +354,9 @@ ENVELOPE = [0.0]
 # refinement runs on the whole stitched paths and the stitched paths run as their fragments
 # (h19r): on 2 ranks the single run's output (947 of 947 points, farthest 0.000 voxel, its
 # refinement counts); on 4, 98.0 % and 1.76 voxel, where the stitched skeleton itself differs
-# (one point more at a cut path's end: EndStage::measureEndCap's tolerance from a path's middle
-# radius, another branch). On 2 ranks main's per-piece refinement fails both (98.8 %, 1.76).
+# (its paths continue through one junction along another branch than the single run's: other
+# smoothing windows; Docs/CLIENT-SERVER.md). On 2 ranks main's per-piece refinement fails both
+# (98.8 %, 1.76).
 ALL_WITHIN = 1.0 if RANKS == 2 else 0.95
 RAW_STAGES_VOXELS = 0.1 if RANKS == 2 else 2.0
 # The raw mode without a seed (h19x): the built-in run's graph, range and message, and the bound
