@@ -38,7 +38,7 @@ public:
   /// should be of the order of that reach: 16 voxels (4096 voxels, 16 KiB as floats) keeps what
   /// the first rank fetches near the vessels (a page of 32 would hold 8 times the voxels for a
   /// path grazing it) while the parts' headers (3 words each) stay under 0.2 % of the payload
-  /// and a 1024^3 volume has 2^18 pages (one pointer each on the first rank).
+  /// and a 1024^3 volume has 2^18 pages (one 64-byte slot each on the first rank).
   static constexpr std::int64_t kPageEdge_voxels = 16;
 
   /// An owner's intensity of a voxel it owns (whole-volume index); empty: the rank holds no piece.
@@ -104,7 +104,7 @@ private:
   PieceLayout Layout;
   OwnedIntensity Mine;
   std::array<std::int64_t, 3> PerAxis{ 0, 0, 0 };
-  std::vector<Page> Pages; ///< first rank: one slot per page (56 bytes; empty until fetched)
+  std::vector<Page> Pages; ///< first rank: one slot per page (64 bytes; empty until fetched)
   mutable std::vector<std::int64_t> Missed; ///< the reader's misses since its run started
 };
 
