@@ -1,5 +1,6 @@
 #include "vtouchPhantomShapes.h"
 
+#include "vtouchArcLengthTable.h"
 #include "vtouchVascularTreeGenerator.h"
 
 #include <algorithm>
@@ -48,31 +49,16 @@ SkeletonPath sampleCurve(const CurveFunction& r,
   };
 
   // Arc length table on a fine parameter grid, then resample at equal arc steps.
-  const int fine = 20000;
-  std::vector<double> arc(fine + 1, 0.0);
-  Vec3 prev = r(t0);
-  for (int i = 1; i <= fine; ++i)
-  {
-    const Vec3 p = r(t0 + (t1 - t0) * i / fine);
-    arc[i] = arc[i - 1] + (p - prev).norm();
-    prev = p;
-  }
-  const double length = arc[fine];
+  ArcLengthTable arc(r, t0, t1, 20000);
+  const double length = arc.length_mm();
   const int count = std::max(2, static_cast<int>(std::ceil(length / step_mm)) + 1);
 
   SkeletonPath path;
   path.points.reserve(count);
-  int cursor = 0;
   for (int k = 0; k < count; ++k)
   {
     const double s = length * k / (count - 1);
-    while (cursor < fine - 1 && arc[cursor + 1] < s)
-    {
-      ++cursor;
-    }
-    const double span = arc[cursor + 1] - arc[cursor];
-    const double w = span > 0.0 ? (s - arc[cursor]) / span : 0.0;
-    const double t = t0 + (t1 - t0) * (cursor + w) / fine;
+    const double t = arc.parameterAt(s);
     const Vec3 v1 = d1(t);
     const Vec3 v2 = d2(t);
     const Vec3 c12 = v1.cross(v2);

@@ -1,5 +1,6 @@
 #include "vtouchVascularTreeGenerator.h"
 
+#include "vtouchArcLengthTable.h"
 #include "vtouchPhantomRandom.h"
 
 #include <algorithm>
@@ -64,30 +65,15 @@ struct Hermite
 /// Samples a Hermite segment at equal arc steps of about step_mm, with analytic Frenet geometry.
 SkeletonPath sampleHermite(const Hermite& h, double radius_mm, double step_mm)
 {
-  const int fine = 1024;
-  std::vector<double> arc(fine + 1, 0.0);
-  Vec3 prev = h.p0;
-  for (int i = 1; i <= fine; ++i)
-  {
-    const Vec3 p = h.at(static_cast<double>(i) / fine);
-    arc[i] = arc[i - 1] + (p - prev).norm();
-    prev = p;
-  }
-  const double length = arc[fine];
+  ArcLengthTable arc([&h](double t) { return h.at(t); }, 0.0, 1.0, 1024);
+  const double length = arc.length_mm();
   const int count = std::max(2, static_cast<int>(std::ceil(length / step_mm)) + 1);
   SkeletonPath path;
   path.points.reserve(count);
-  int cursor = 0;
   for (int k = 0; k < count; ++k)
   {
     const double s = length * k / (count - 1);
-    while (cursor < fine - 1 && arc[cursor + 1] < s)
-    {
-      ++cursor;
-    }
-    const double span = arc[cursor + 1] - arc[cursor];
-    const double w = span > 0.0 ? std::clamp((s - arc[cursor]) / span, 0.0, 1.0) : 0.0;
-    const double t = (cursor + w) / fine;
+    const double t = arc.parameterAt(s);
     const Vec3 v1 = h.d1(t);
     const Vec3 v2 = h.d2(t);
     const Vec3 c12 = v1.cross(v2);

@@ -19,7 +19,8 @@ Charts (each captioned with the machine, the commit and quick/full mode):
                                    interpolation bound against loop rate, defaults marked
   render_fps.png                   agent frames/s cached vs full re-render over volume sizes
   client_server_scaling.png        peak memory per rank, centerline time, bytes to the client and
-                                   the client's haptic p99 against the pvserver rank count
+                                   the client's haptic p99 against the pvserver rank count; the
+                                   largest volume's time per stage per run
   raw_centerline.png               raw angiograms from one seed: recall per radius class and
                                    precision (worst phantom case), VesselCenterline vs
                                    scikit-image, every case as dots; times beside
@@ -366,9 +367,9 @@ def chart_client_server_scaling(out, results):
               ("bytes_to_client", "skeleton sent to the client (bytes)"),
               ("haptic.render.period_error_p99_us", "client haptic p99 period error\n"
                "while the server renders (us)"))
-    fig, axes = plt.subplots(1, 4, figsize=(15, 4.2))
+    fig, axes = plt.subplots(1, 5, figsize=(19, 4.2))
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for ax, (key, label) in zip(axes, panels):
+    for ax, (key, label) in zip(axes[:4], panels):
         for i, size in enumerate(raw["sizes"]):
             for distributed, style in ((False, "o-"), (True, "s--")):
                 chosen = [r for r in runs if r == "r1" or r.endswith("d") == distributed]
@@ -381,9 +382,45 @@ def chart_client_server_scaling(out, results):
         ax.set_ylabel(label, fontsize=8)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=6)
+    chart_scaling_stages(axes[4], raw, colours)
     fig.suptitle("client/server: the volume on N ranks, the haptic session in the client",
                  fontsize=10)
     save(fig, out, "client_server_scaling.png", results)
+
+
+def chart_scaling_stages(ax, raw, colours):
+    """Where VesselCenterline's time in the pipeline goes on the largest volume, per run: stacked,
+    each stage the slowest rank's (distributed runs: stage_piece*; the first rank's coder
+    otherwise), the rest of the pipeline's wall time on top. A stage's slowest rank need not be
+    the same rank for every stage, so the stack may exceed the wall time (then no rest is drawn)."""
+    size = raw["sizes"][-1]
+    stages = (("reader re-run (grown piece)", ("stage_pieceUpstream_s",)),
+              ("mask", ("stage_pieceMask_s", "stage_coderMask_s")),
+              ("global SS field (rounds)", ("stage_coderGlobalSeedCode_s",)),
+              ("coding", ("stage_pieceCode_s", "stage_coderCoderAll_s")),
+              ("gather wait + stitch", ("stage_pieceGatherWait_s", "stage_distributedStitch_s")))
+    runs = raw["runs"]
+    bottoms = [0.0] * len(runs)
+    for j, (label, keys) in enumerate(stages):
+        values = []
+        for r in runs:
+            data = raw.get("%s.%s" % (size, r), {})
+            if label == "gather wait + stitch":
+                values.append(sum(data.get(k, 0.0) for k in keys))
+            else:
+                values.append(next((data[k] for k in keys if k in data), 0.0))
+        ax.bar(range(len(runs)), values, bottom=bottoms, color=colours[j % len(colours)],
+               label=label)
+        bottoms = [b + v for b, v in zip(bottoms, values)]
+    rest = [max(0.0, raw.get("%s.%s" % (size, r), {}).get("centerline_s", 0.0) - b)
+            for r, b in zip(runs, bottoms)]
+    ax.bar(range(len(runs)), rest, bottom=bottoms, color="lightgrey", label="rest of the wall time")
+    ax.set_xticks(range(len(runs)))
+    ax.set_xticklabels(runs)
+    ax.set_xlabel("run (d: distributed)")
+    ax.set_ylabel("%s: time per stage (s)" % size, fontsize=8)
+    ax.grid(alpha=0.3, axis="y")
+    ax.legend(fontsize=6)
 
 
 def chart_raw_centerline(out, results):

@@ -12,9 +12,9 @@
 #include "vtouchDistributedRawRefinement.h"
 #include "vtouchDistributedStitchRun.h"
 #include "vtouchEveryRank.h"
-#include "vtouchPhantomGenerator.h"
 #include "vtouchPieceGrid.h"
 #include "vtouchRankPiece.h"
+#include "vtouchRawPhantomVolume.h"
 #include "vtouchVesselCandidateRegion.h"
 
 #include <gtest/gtest.h>
@@ -24,6 +24,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vtouch
@@ -38,18 +39,9 @@ constexpr int kMargin = 31;
 /// The 112^3 raw phantom (60 segments, 4 clutter objects, seed 3, noise 10).
 std::vector<float> rawPhantom112()
 {
-  PhantomSpec spec;
-  spec.noiseStdDev = 10.0;
-  spec.shape = PhantomShape::RawAngiogram;
-  spec.dimensions = { 112, 112, 112 };
-  spec.angiogramSegments = 60;
-  spec.clutterCount = 4;
-  spec.seed = 3;
-  const PhantomGenerator generator(spec);
-  EXPECT_TRUE(generator.ok()) << generator.error();
-  std::vector<float> voxels(112U * 112U * 112U);
-  EXPECT_TRUE(generator.fill(voxels.data()));
-  return voxels;
+  test::FloatVolume v = test::rawPhantomVolume(112, 3, 60, 10.0);
+  EXPECT_TRUE(v.ok) << v.error;
+  return std::move(v.voxels);
 }
 
 constexpr Index kDims{ 112, 112, 112 };

@@ -8,8 +8,8 @@
 #include "vtouchDistributedVolumeRange.h"
 #include "vtouchEveryRank.h"
 #include "vtouchHeldRegionFromOwners.h"
-#include "vtouchPhantomGenerator.h"
 #include "vtouchPieceGrid.h"
+#include "vtouchRawPhantomVolume.h"
 #include "vtouchRankPiece.h"
 #include "vtouchVesselCandidateRegion.h"
 
@@ -37,33 +37,13 @@ void itkOnTheCallingThread()
 /// root radius is 4 voxels) and the tubularity's largest smoothing support.
 constexpr int kMargin = 16;
 
-struct Volume
-{
-  std::array<std::int64_t, 3> dims;
-  std::vector<float> voxels;
-  VolumeView<float> view() const
-  {
-    VolumeView<float> v;
-    v.voxels = voxels.data();
-    v.dims = dims;
-    return v;
-  }
-};
+using Volume = test::FloatVolume;
 
 /// VesselPhantom's raw angiogram (the client/server test's recipe at a smaller size).
 Volume rawPhantom(int n, std::uint32_t seed)
 {
-  PhantomSpec spec;
-  spec.shape = PhantomShape::RawAngiogram;
-  spec.dimensions = { n, n, n };
-  spec.angiogramSegments = 40;
-  spec.clutterCount = 4;
-  spec.noiseStdDev = 20.0;
-  spec.seed = seed;
-  const PhantomGenerator generator(spec);
-  EXPECT_TRUE(generator.ok()) << generator.error();
-  Volume v{ { n, n, n }, std::vector<float>(static_cast<std::size_t>(n) * n * n) };
-  EXPECT_TRUE(generator.fill(v.voxels.data()));
+  Volume v = test::rawPhantomVolume(n, seed, 40, 20.0);
+  EXPECT_TRUE(v.ok) << v.error;
   return v;
 }
 

@@ -7,7 +7,7 @@
 #include "vtouchDistributedCandidateRegion.h"
 #include "vtouchDistributedTubularity.h"
 #include "vtouchEveryRank.h"
-#include "vtouchPhantomGenerator.h"
+#include "vtouchRawPhantomVolume.h"
 #include "vtouchPieceGrid.h"
 #include "vtouchRankPiece.h"
 #include "vtouchVesselCandidateRegion.h"
@@ -31,32 +31,12 @@ using test::onEveryRank;
 /// up to 123 voxels past a site and come from the other ranks.
 constexpr int kMargin = 31;
 
-struct Whole
-{
-  std::array<std::int64_t, 3> dims;
-  std::vector<float> voxels;
-  VolumeView<float> view() const
-  {
-    VolumeView<float> v;
-    v.voxels = voxels.data();
-    v.dims = dims;
-    return v;
-  }
-};
+using Whole = test::FloatVolume;
 
 Whole rawPhantom(int n, std::uint32_t seed, int segments)
 {
-  PhantomSpec spec;
-  spec.shape = PhantomShape::RawAngiogram;
-  spec.dimensions = { n, n, n };
-  spec.angiogramSegments = segments;
-  spec.clutterCount = 4;
-  spec.noiseStdDev = 20.0;
-  spec.seed = seed;
-  const PhantomGenerator generator(spec);
-  EXPECT_TRUE(generator.ok()) << generator.error();
-  Whole v{ { n, n, n }, std::vector<float>(static_cast<std::size_t>(n) * n * n) };
-  EXPECT_TRUE(generator.fill(v.voxels.data()));
+  Whole v = test::rawPhantomVolume(n, seed, segments, 20.0);
+  EXPECT_TRUE(v.ok) << v.error;
   return v;
 }
 

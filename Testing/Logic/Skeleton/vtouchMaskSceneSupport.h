@@ -1,6 +1,6 @@
 // Scenes drawn as masks for the tube-section tests (TubeLikenessPruner, TubeSectionTracker):
-// a mask from an inside test, the distance to an axis segment, and the raw path's coding of a
-// mask from a seed voxel. Unit spacing, origin 0: voxel index = world mm.
+// a mask from an inside test, the distance to an axis segment, the points off the axes and the
+// axis covered, and the raw path's coding of a mask from a seed voxel. Unit spacing, origin 0: voxel index = world mm.
 #pragma once
 
 #include "vtouchQSkeleton.h"
@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace vtouch
 {
@@ -50,6 +51,57 @@ inline double segmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
   return (p - (a + ab * t)).norm();
 }
 
+
+/// The skeleton's points farther than `d` from every segment of `axes`: how many, of how many.
+struct PointsOff
+{
+  std::size_t off = 0;
+  std::size_t all = 0;
+  double share() const { return this->all ? double(this->off) / double(this->all) : 0.0; }
+};
+inline PointsOff pointsOffAxes(const QSkeleton& s,
+  const std::vector<std::array<Vec3, 2>>& axes,
+  double d)
+{
+  PointsOff counted;
+  for (const SkeletonPath& path : s.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      double best = 1e300;
+      for (const auto& ab : axes)
+      {
+        best = std::min(best, segmentDistance(q.position_World_mm, ab[0], ab[1]));
+      }
+      counted.off += best > d ? 1 : 0;
+      ++counted.all;
+    }
+  }
+  return counted;
+}
+
+/// Share of the axis a-b (sampled every voxel, `margin` voxels in from its ends) within `d` of
+/// some skeleton point.
+inline double coverage(const QSkeleton& s, const Vec3& a, const Vec3& b, double margin, double d)
+{
+  const double length = (b - a).norm();
+  int covered = 0, all = 0;
+  for (double t = margin; t <= length - margin; t += 1.0)
+  {
+    const Vec3 p = a + (b - a) * (t / length);
+    bool hit = false;
+    for (const SkeletonPath& path : s.paths)
+    {
+      for (const SkeletonPoint& q : path.points)
+      {
+        hit = hit || (q.position_World_mm - p).norm() <= d;
+      }
+    }
+    covered += hit ? 1 : 0;
+    ++all;
+  }
+  return all ? double(covered) / double(all) : 0.0;
+}
 /// Codes `mask` from the seed voxel (unit spacing, origin 0) as the raw path does.
 inline QSkeleton codeFromSeed(const Dims& dims, const SparseVesselMask& mask, const Vec3& seed)
 {

@@ -1,7 +1,12 @@
 // Stage 6 of the voxel coder alone: rounded ends trimmed to the cap's centre, stubs cut.
+#include "vtouchPieceOwnership.h"
 #include "vtouchSkeletonStageTestSupport.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
 
 namespace
 {
@@ -69,6 +74,78 @@ RawSkeletonPath straightPath(int n, double x0, double radius_mm)
     p.radius_mm.push_back(radius_mm);
   }
   return p;
+}
+
+/// A vessel tapering to its tail, as a path: points 1 mm apart along x from x = 10 to 49 (1 mm
+/// voxels), radius 8 mm up to x = 37 and 2 mm from x = 38 on (its last 12 points), the tail a
+/// free end. No vessel in the mask around it: the cap cannot be measured there, so the
+/// inscribed-ball rule alone answers (measureEndCap's fallback).
+RawSkeletonPath taperingPath()
+{
+  RawSkeletonPath p;
+  for (int x = 10; x < 50; ++x)
+  {
+    p.voxels.push_back({ x, 2, 2 });
+    p.center_mm.push_back({ static_cast<double>(x), 2.0, 2.0 });
+    p.radius_mm.push_back(x >= 38 ? 2.0 : 8.0);
+  }
+  return p;
+}
+
+/// One vessel voxel far from the path (the grid needs one).
+SparseVesselMask farVoxel()
+{
+  return makeMask({ 60, 5, 5 }, [](const Point_mm& p) { return p == Point_mm{ 0, 0, 0 }; });
+}
+
+TEST(SkeletonEndStage, ThinEndOfATaperingVesselIsTrimmedByItsOwnRadius)
+{
+  const SparseVesselMask mask = farVoxel();
+  Pipeline run(mask);
+  const EndStage stage(run.grid, 2.5, run.draft, 0);
+  RawSkeletonPath path = taperingPath();
+  const std::vector<char> pinned(path.voxels.size(), 0);
+  // The end points inside the inscribed ball of a point further in, within 0.5 voxel + 0.1 of
+  // the radius near the end (2 mm): point k (k mm in) holds the end for k <= 2 + 0.7. The radius
+  // at the path's middle point (8 mm, x = 29) widened that to k <= 3.3 (until h19e: trim 3, one
+  // point past the cap's centre).
+  const EndStage::EndCap tail = stage.measureEndCap(path, true, pinned);
+  EXPECT_EQ(tail.trim, 2U);
+  EXPECT_FALSE(tail.centre_mm.has_value()); // no cap on the mask: the fallback answered
+  // The same end as a head.
+  std::reverse(path.voxels.begin(), path.voxels.end());
+  std::reverse(path.center_mm.begin(), path.center_mm.end());
+  std::reverse(path.radius_mm.begin(), path.radius_mm.end());
+  EXPECT_EQ(stage.measureEndCap(path, false, pinned).trim, 2U);
+}
+
+TEST(SkeletonEndStage, EndCapIsTheSameOnAPathCutBeyondTheGhostMargin)
+{
+  // A distributed run (issue 19 item 2): a rank whose grown piece cuts the path sees only its
+  // part of it, from the end to the cut, at least the ghost margin from an end the rank owns.
+  // The end's cap reads the path within that margin only, so every such part gives the whole
+  // path's cap.
+  const SparseVesselMask mask = farVoxel();
+  Pipeline run(mask);
+  const EndStage stage(run.grid, 2.5, run.draft, 0);
+  const RawSkeletonPath whole = taperingPath();
+  const EndStage::EndCap expected =
+    stage.measureEndCap(whole, true, std::vector<char>(whole.voxels.size(), 0));
+  GhostMarginRule rule;
+  rule.largestRadius_mm = 2.0; // the vessel's radius at the end
+  const int margin = rule.voxels({ 1.0, 1.0, 1.0 });
+  ASSERT_EQ(margin, 17);
+  for (std::size_t kept = static_cast<std::size_t>(margin); kept < whole.voxels.size(); ++kept)
+  {
+    RawSkeletonPath part = whole;
+    const auto cut = static_cast<std::ptrdiff_t>(whole.voxels.size() - kept);
+    part.voxels.erase(part.voxels.begin(), part.voxels.begin() + cut);
+    part.center_mm.erase(part.center_mm.begin(), part.center_mm.begin() + cut);
+    part.radius_mm.erase(part.radius_mm.begin(), part.radius_mm.begin() + cut);
+    const EndStage::EndCap cap = stage.measureEndCap(part, true, std::vector<char>(kept, 0));
+    EXPECT_EQ(cap.trim, expected.trim) << kept << " points kept";
+    EXPECT_TRUE(cap.centre_mm == expected.centre_mm) << kept << " points kept";
+  }
 }
 
 TEST(SkeletonEndStage, StubBeyondTheLastJunctionIsCut)

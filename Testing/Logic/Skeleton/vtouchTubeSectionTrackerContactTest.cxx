@@ -22,6 +22,7 @@ using namespace vtouch;
 namespace
 {
 using Dims = std::array<std::int64_t, 3>;
+using mask_scenes::coverage;
 using mask_scenes::makeMask;
 using mask_scenes::segmentDistance;
 
@@ -97,42 +98,7 @@ QSkeleton joined(const std::vector<Vec3>& parent,
 /// Number of the skeleton's points farther than `d` from every segment of `axes`.
 int pointsOff(const QSkeleton& s, const std::vector<std::array<Vec3, 2>>& axes, double d)
 {
-  int off = 0;
-  for (const SkeletonPath& path : s.paths)
-  {
-    for (const SkeletonPoint& q : path.points)
-    {
-      double best = 1e300;
-      for (const auto& ab : axes)
-      {
-        best = std::min(best, segmentDistance(q.position_World_mm, ab[0], ab[1]));
-      }
-      off += best > d ? 1 : 0;
-    }
-  }
-  return off;
-}
-
-/// Share of the axis a-b (every voxel, `margin` voxels in from its ends) within `d` of a point.
-double coverage(const QSkeleton& s, const Vec3& a, const Vec3& b, double margin, double d)
-{
-  const double length = (b - a).norm();
-  int covered = 0, all = 0;
-  for (double t = margin; t <= length - margin; t += 1.0)
-  {
-    const Vec3 p = a + (b - a) * (t / length);
-    bool hit = false;
-    for (const SkeletonPath& path : s.paths)
-    {
-      for (const SkeletonPoint& q : path.points)
-      {
-        hit = hit || (q.position_World_mm - p).norm() <= d;
-      }
-    }
-    covered += hit ? 1 : 0;
-    ++all;
-  }
-  return all ? double(covered) / double(all) : 0.0;
+  return static_cast<int>(mask_scenes::pointsOffAxes(s, axes, d).off);
 }
 
 void print(const char* what, const QSkeleton& s, const TubeSectionTracker::Result& r)

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -114,6 +115,7 @@ TEST(VoxelCodingSkeletonFilter, StraightTubeGivesOnePathWithTwoEnds)
 // voxels short at 97^3.)
 TEST(VoxelCodingSkeletonFilter, VesselEndsStopAtTheCapCentreOnEveryVoxelAlignment)
 {
+  double worst = 0.0;
   for (int n = 88; n <= 97; ++n)
   {
     for (double radius : { 0.04, 0.07 })
@@ -134,8 +136,12 @@ TEST(VoxelCodingSkeletonFilter, VesselEndsStopAtTheCapCentreOnEveryVoxelAlignmen
         std::min((tail - a).norm(), (tail - b).norm()));
       EXPECT_LE(error, 1.0);
       EXPECT_GE(run.accuracy.coverage, 0.99);
+      worst = std::max(worst, error);
+      std::cout << n << "^3, radius " << radius << " N: ends within " << error / spec.spacing_mm[0]
+                << " voxel of the analytic ones\n";
     }
   }
+  std::cout << "worst end " << worst << " mm\n";
 }
 
 /// Helix curvature and torsion within 5 % of a / (a^2 + c^2) and c / (a^2 + c^2) away from the

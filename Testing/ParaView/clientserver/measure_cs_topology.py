@@ -7,7 +7,8 @@
 For each rank count a pvserver starts on 127.0.0.1, reads the volume (each rank its piece) and
 runs VesselCenterline thresholded (DistributedExtraction on with more than one rank). Printed:
 paths, points, vessel ends, bifurcations and loops (vtouch_skeleton_graph.graph), the shortest
-polyline, and the stitch's field arrays (Stitch*). The scaling bench's tree:
+polyline, and the stitch's field arrays (Stitch*); --save PREFIX writes each run's output to
+PREFIX_r<ranks>.vtp. The scaling bench's tree:
 `scaling_bench.write_tree_nrrd(path, (256, 256, 256))` (Utilities/bench). With --seed (world mm)
 the run is seeded (UseSeedPoint: the distributed run codes with the global SS code, its rounds
 printed as SeedCodeRounds); without, the distributed run codes with the single run's automatic
@@ -41,6 +42,7 @@ import numpy as np  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter  # noqa: E402
 
 
 def write_raw_phantom(path, n):
@@ -72,7 +74,8 @@ def share_within(a, b, reach_voxels=0.1):
     return near / len(a)
 
 
-def measure(volume, ranks, lower, upper, seed=None, automatic=False, radius=0.0, first=None):
+def measure(volume, ranks, lower, upper, seed=None, automatic=False, radius=0.0, first=None,
+            save=None):
     server = ParallelServer(ranks=ranks)
     server.start()
     try:
@@ -91,6 +94,11 @@ def measure(volume, ranks, lower, upper, seed=None, automatic=False, radius=0.0,
         centerline.UpdatePipeline()
         seconds = time.perf_counter() - start
         data = sm.Fetch(centerline)
+        if save:
+            writer = vtkXMLPolyDataWriter()
+            writer.SetFileName("%s_r%d.vtp" % (save, ranks))
+            writer.SetInputData(data)
+            writer.Write()
         g = graph(data, 1.0)
         fd = data.GetFieldData()
         stitch = {fd.GetArrayName(i): fd.GetArray(i).GetTuple(0)[0]
@@ -144,6 +152,8 @@ def main():
                         help="LargestVesselRadius, mm (0: automatic)")
     parser.add_argument("--raw-phantom", type=int, default=0,
                         help="write the raw phantom at N^3 to --volume first")
+    parser.add_argument("--save", default=None,
+                        help="write each run's output to SAVE_r<ranks>.vtp (to look at)")
     parser.add_argument("--phantom", type=int, default=None,
                         help="write the built-in phantom of this Shape to --volume first")
     args = parser.parse_args()
@@ -158,7 +168,7 @@ def main():
     first = None
     for ranks in args.ranks:
         points = measure(args.volume, ranks, args.lower, args.upper, args.seed, args.automatic,
-                         args.largest_radius, first)
+                         args.largest_radius, first, args.save)
         first = points if first is None else first
 
 
