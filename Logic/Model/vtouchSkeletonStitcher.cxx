@@ -456,12 +456,21 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
     chainEnds.push_back(ends);
     s.paths.push_back(std::move(path));
   };
-  // Open chains first, from every end that is not joined; then what is left are loops.
-  for (std::size_t e = 0; e < 2 * f.size(); ++e)
+  // Open chains first, from every end that is not joined; then what is left are loops. From the
+  // free heads first (project rule, h19r): a chain whose fragments all run head to tail (the
+  // coder's order; with the global SS field the single run's) then runs as they do, as the
+  // single run's path, instead of from whichever of its free ends comes first in the fragments'
+  // order (the 256^3 raw phantom on 4 ranks: two of 27 paths reversed, and the raw path's
+  // re-tracing, which runs forward from a stretch's clean point before, retraced them
+  // otherwise: 0.24 voxel). Then the chains with two free tails (fragments run both ways).
+  for (const std::size_t parity : { std::size_t{ 0 }, std::size_t{ 1 } })
   {
-    if (!used[e / 2] && partner[e] < 0)
+    for (std::size_t e = parity; e < 2 * f.size(); e += 2)
     {
-      addChain(e);
+      if (!used[e / 2] && partner[e] < 0)
+      {
+        addChain(e);
+      }
     }
   }
   for (std::size_t g = 0; g < f.size(); ++g)

@@ -21,6 +21,10 @@ public:
   virtual std::vector<std::vector<double>> allGather(const std::vector<double>& mine) = 0;
   virtual std::vector<std::vector<std::int64_t>> allGather(
     const std::vector<std::int64_t>& mine) = 0;
+  /// Every rank's `mine`, indexed by rank, on `root` only (the others get an empty list): what
+  /// only one rank needs (DistributedVolumePages' pages) never reaches the others.
+  virtual std::vector<std::vector<std::int64_t>> gather(const std::vector<std::int64_t>& mine,
+    int root) = 0;
 
   /// The largest of the ranks' `value`s.
   double maximum(double value)
@@ -47,6 +51,14 @@ public:
   {
     const bool mine = this->rank() == root;
     std::vector<std::vector<double>> all = this->allGather(mine ? values : std::vector<double>{});
+    return all[static_cast<std::size_t>(root)];
+  }
+  /// `root`'s `values` on every rank (the others' `values` are ignored).
+  std::vector<std::int64_t> broadcast(const std::vector<std::int64_t>& values, int root)
+  {
+    const bool mine = this->rank() == root;
+    std::vector<std::vector<std::int64_t>> all =
+      this->allGather(mine ? values : std::vector<std::int64_t>{});
     return all[static_cast<std::size_t>(root)];
   }
 };

@@ -39,6 +39,14 @@ struct SectionForeground
   }
 };
 
+/// Whether an intensity lies in the vessel's range [lower, upper] (NaN does not): the one test
+/// of the single run's foreground (rangeForeground, Logic/VTK) and of the distributed run's
+/// (DistributedVolumePages), so that both are the same predicate (project rule).
+inline bool inIntensityRange(double value, double lower, double upper)
+{
+  return value >= lower && value <= upper;
+}
+
 /// The volume's intensities: value(linear index, x fastest) over a grid of `dims` (what the raw
 /// path's tip rule reads, vtouchTurnedDimTipTrimmer.h).
 struct SectionIntensity

@@ -5,6 +5,7 @@
 #include "vtouchDistributedRequest.h"
 #include "vtouchDistributedRawRegion.h"
 #include "vtouchDistributedGlobalField.h"
+#include "vtouchDistributedWholePathRefinement.h"
 #include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchQSkeletonToPolyData.h"
 #include "vtouchRangeForeground.h"
@@ -333,11 +334,12 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     {
       return cancelled();
     }
-    if (mask)
+    if (mask && !this->DeferRawRefinement)
     {
       // Raw-angiogram path only (issue 16): stretches where clutter touches a vessel are
       // re-traced on the tube's own sections or cut, then paths whose cross-sections are not
-      // tube-like go; binary masks and the override are untouched.
+      // tube-like go; binary masks and the override are untouched. (Distributed with the global
+      // field the first rank runs it on the whole stitched paths instead, RequestDistributed.)
       vtouch::SectionGeometry geometry;
       input->GetOrigin(geometry.origin_mm.data());
       input->GetSpacing(geometry.spacing_mm.data());
@@ -595,15 +597,20 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   // The whole paths smoothed on the first rank (issue 19 item 2): the smoothing windows scale
   // with a path's median radius, and a rank sees only its part of a path that crosses pieces
   // (the 256^3 scaling tree: 4 points 0.16 voxel off at a bend with each rank's own windows).
-  // In the modes coded with the global field, whose ranks' centres are the single run's; the
-  // raw modes' tube tracker and pruning work on each piece's smoothed skeleton, so there each
-  // rank still smooths its own part (a departure, Docs/CLIENT-SERVER.md).
-  this->DeferPathSmoothing = !raw && (globalSeedCode || globalRootCode);
+  // In the modes coded with the global field, whose ranks' centres are the single run's.
+  this->DeferPathSmoothing = globalSeedCode || globalRootCode;
+  // The raw modes coded with the global field: the raw path's refinement (tube tracker, tube
+  // likeness pruning, turned dim tips) then runs once on the whole stitched, smoothed skeleton
+  // on the first rank, as in the single run, the volume read from pages its owners send (h19r:
+  // each rank's run on its own smoothed part of a path made the whole-path decisions and the
+  // re-traced stretches' windows differ). An explicit DownsampleFactor > 1 keeps each rank's
+  // own roots, smoothing and refinement (a departure, Docs/CLIENT-SERVER.md).
+  this->DeferRawRefinement = raw && this->DeferPathSmoothing;
   struct DeferReset
   {
-    bool& flag;
-    ~DeferReset() { this->flag = false; }
-  } deferReset{ this->DeferPathSmoothing };
+    vtkVesselTouchCenterlineFilter* filter;
+    ~DeferReset() { this->filter->DeferPathSmoothing = this->filter->DeferRawRefinement = false; }
+  } deferReset{ this };
   if (this->DeferPathSmoothing)
   {
     hooks.afterStitch = [this](vtouch::QSkeleton& stitched, const vtouch::IndexFrame& frame)
@@ -611,6 +618,28 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       vtouch::smoothSkeletonPaths(stitched,
         *std::max_element(frame.spacing_mm.begin(), frame.spacing_mm.end()),
         this->SmoothingWindow);
+    };
+  }
+  if (this->DeferRawRefinement)
+  {
+    hooks.afterStitchCollective = [&](vtkImageData* input,
+                                    const vtouch::VoxelExtent6& whole,
+                                    vtouch::QSkeleton* stitched,
+                                    vtkFieldData* report)
+    {
+      // The single run's arguments (ExtractVolume): the SmoothingWindow, and the range with its
+      // B and S, which the ranks computed together (the same numbers on every rank, checked).
+      vtouch::DistributedRawRefinement::Settings settings;
+      settings.smoothingWindow_mm = this->SmoothingWindow;
+      settings.lower = region.lower;
+      settings.upper = region.upper;
+      settings.background = region.background;
+      settings.backgroundNoise = region.backgroundNoise;
+      vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
+      scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
+      // A two-valued volume without a seed is a mask the single run does not refine.
+      return vtouch::DistributedWholePathRefinement::run(
+        controller(), input, scalars, whole, region.binary ? nullptr : stitched, settings, report);
     };
   }
   const vtouch::DistributedRequest::Outcome outcome =

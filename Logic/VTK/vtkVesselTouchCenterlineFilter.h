@@ -249,11 +249,15 @@ private:
   /// while ExtractVolume runs on the piece: the global SS field across the ranks, which the
   /// coder codes with (its hook).
   vtouch::DistributedGlobalField* DistributedField = nullptr;
-  /// Set by RequestDistributed in the modes coded with the global field, thresholded or binary,
-  /// while ExtractVolume runs on the piece: the coder keeps its centres (positions unsmoothed)
-  /// and the first rank smooths the stitched whole paths (smoothSkeletonPaths), whose median
-  /// radius sets the windows: a rank sees only its part of a path.
+  /// Set by RequestDistributed in the modes coded with the global field (thresholded, binary
+  /// or raw) while ExtractVolume runs on the piece: the coder keeps its centres (positions
+  /// unsmoothed) and the first rank smooths the stitched whole paths (smoothSkeletonPaths),
+  /// whose median radius sets the windows: a rank sees only its part of a path.
   bool DeferPathSmoothing = false;
+  /// Set by RequestDistributed in the raw modes coded with the global field while ExtractVolume
+  /// runs on the piece: the piece skips the raw path's refinement (RawSkeletonRefinement); the
+  /// first rank runs it on the whole stitched paths (vtouch::DistributedWholePathRefinement).
+  bool DeferRawRefinement = false;
   /// The distributed run's pipeline stamps on this rank (issue 19 item 4: where the time goes).
   vtouch::RankTimeline DistributedTimeline;
 #endif

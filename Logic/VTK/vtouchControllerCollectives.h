@@ -22,6 +22,9 @@ public:
   /// The lengths first (AllGather), then the values (AllGatherV).
   std::vector<std::vector<double>> allGather(const std::vector<double>& mine) override;
   std::vector<std::vector<std::int64_t>> allGather(const std::vector<std::int64_t>& mine) override;
+  /// The lengths first (Gather), then the values (GatherV), both to `root` only.
+  std::vector<std::vector<std::int64_t>> gather(const std::vector<std::int64_t>& mine,
+    int root) override;
 
 private:
   vtkMultiProcessController* Controller;

@@ -132,16 +132,26 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   if (!DistributedCenterline::gatherAndStitch(
         controller, skeleton, frame, whole, report, 2.0 * largestSpacing, result))
   {
+    if (hooks.afterStitchCollective)
+    {
+      hooks.afterStitchCollective(input, whole, nullptr, nullptr); // serves the first rank
+    }
     outcome.message = pieceMessage;
     return outcome; // not the first rank: an empty piece of the output
   }
   outcome.firstRank = true;
+  if (!result.skeleton.empty() && hooks.afterStitch)
+  {
+    hooks.afterStitch(result.skeleton, frame);
+  }
+  std::string stitchedError;
+  if (hooks.afterStitchCollective)
+  {
+    stitchedError = hooks.afterStitchCollective(
+      input, whole, result.skeleton.empty() ? nullptr : &result.skeleton, output->GetFieldData());
+  }
   if (!result.skeleton.empty())
   {
-    if (hooks.afterStitch)
-    {
-      hooks.afterStitch(result.skeleton, frame);
-    }
     // (An empty skeleton's zero-tuple topology arrays would make the client lose every field
     // array on the way, the message with them.)
     hooks.fill(result.skeleton, output);
@@ -167,6 +177,10 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   if (!result.error.empty())
   {
     message = "VesselCenterline: " + result.error;
+  }
+  if (!stitchedError.empty() && message.empty())
+  {
+    message = "VesselCenterline (distributed): " + stitchedError;
   }
   outcome.message = message;
   addRangeFieldData(

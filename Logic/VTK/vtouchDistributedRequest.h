@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+class vtkFieldData;
 class vtkImageData;
 class vtkInformation;
 class vtkInformationVector;
@@ -61,6 +62,17 @@ public:
     /// the volume's frame (the whole paths' smoothing of the modes whose ranks keep their
     /// centres, smoothSkeletonPaths).
     std::function<void(QSkeleton& stitched, const IndexFrame& frame)> afterStitch;
+    /// Optional, collective: runs on every rank after the stitch (after afterStitch), with or
+    /// without an input (the raw modes' refinement over the whole stitched paths, the other
+    /// ranks serving pages of the volume). `stitched`: the first rank's stitched skeleton, which
+    /// it may change (null on the other ranks, and on the first when it is empty); `report`: the
+    /// first rank's output field data (null elsewhere). Returns an error, "" when none (the
+    /// first rank's counts: it becomes the output's message).
+    std::function<std::string(vtkImageData* input,
+      const VoxelExtent6& whole,
+      QSkeleton* stitched,
+      vtkFieldData* report)>
+      afterStitchCollective;
   };
   /// What the run says; the filter reports it with its own macros.
   struct Outcome

@@ -52,10 +52,7 @@ SectionForeground rangeForeground(vtkDataArray* scalars,
       [lower, upper](auto data) -> std::function<bool(std::uint64_t)>
       {
         return [data, lower, upper](std::uint64_t lin)
-        {
-          const double v = static_cast<double>(data[lin]);
-          return v >= lower && v <= upper;
-        };
+        { return inIntensityRange(static_cast<double>(data[lin]), lower, upper); };
       }) };
 }
 

@@ -15,7 +15,6 @@ namespace
 using namespace vtouch;
 using namespace vtouch_test;
 
-
 TEST(SkeletonStitcher, APathCutByOneFaceComesBackWhole)
 {
   QSkeleton whole;
@@ -37,6 +36,32 @@ TEST(SkeletonStitcher, APathCutByOneFaceComesBackWhole)
   // Both ends are still free vessel ends, the join point ordinary.
   EXPECT_EQ(s.paths[0].points.front().label, PointLabel::EndPoint);
   EXPECT_EQ(s.paths[0].points[9].label, PointLabel::Ordinary);
+}
+
+TEST(SkeletonStitcher, AStitchedPathRunsAsItsFragmentsRun)
+{
+  // A path whose head lies in the upper piece and whose tail in the lower one: the lower piece's
+  // fragment comes first and its free end is its tail. The stitched path runs head to tail as
+  // the pieces' fragments (the coder's order) do, not from the first free end in the fragments'
+  // order (h19r: the raw path's re-tracing runs forward along a path).
+  QSkeleton whole;
+  std::vector<SkeletonPoint> points;
+  for (int i = 0; i < 19; ++i)
+  {
+    points.push_back(point(19.0 - i, 5.0 + 0.2 * std::sin(i), 5.0));
+  }
+  whole.paths.push_back(path(0, points));
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  ASSERT_EQ(s.paths.size(), 1u);
+  ASSERT_EQ(s.paths[0].points.size(), 19u);
+  for (std::size_t i = 0; i < 19; ++i)
+  {
+    EXPECT_EQ(
+      s.paths[0].points[i].position_World_mm.x, whole.paths[0].points[i].position_World_mm.x)
+      << "point " << i;
+  }
 }
 
 TEST(SkeletonStitcher, AJunctionRightOnAFaceKeepsItsParentPoint)

@@ -1,7 +1,8 @@
 // vtouch::RankCollectives for N ranks as N threads of one process (the distributed stages'
 // tests, no MPI): every allGather deposits this rank's values, waits (with a time-out: a rank
-// that never comes fails the test instead of hanging it) until every rank has, copies them all,
-// and waits again until every rank has copied before a slot may be reused.
+// that never comes fails the test instead of hanging it) until every rank has, copies them all
+// (gather: only the root copies), and waits again until every rank has copied before a slot may
+// be reused.
 #pragma once
 
 #include "vtouchRankCollectives.h"
@@ -85,6 +86,12 @@ private:
     {
       return this->World.gather(this->Id, mine, this->World.Integers);
     }
+    /// Every rank deposits and waits as allGather; only `root` copies the lists.
+    std::vector<std::vector<std::int64_t>> gather(const std::vector<std::int64_t>& mine,
+      int root) override
+    {
+      return this->World.gather(this->Id, mine, this->World.Integers, root);
+    }
 
   private:
     InProcessWorld& World;
@@ -108,13 +115,15 @@ private:
     }
   }
 
+  /// `root` -1: every rank copies the lists (allGather); else only `root` (the others get empty
+  /// lists, one per rank).
   template<typename V>
-  std::vector<V> gather(int rank, const V& mine, std::vector<V>& slots)
+  std::vector<V> gather(int rank, const V& mine, std::vector<V>& slots, int root = -1)
   {
     std::unique_lock<std::mutex> lock(this->Mutex);
     slots[static_cast<std::size_t>(rank)] = mine;
     this->barrier(lock);
-    std::vector<V> all = slots;
+    std::vector<V> all = root < 0 || rank == root ? slots : std::vector<V>(slots.size());
     if (rank == 0)
     {
       ++this->Calls;

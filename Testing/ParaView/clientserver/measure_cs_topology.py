@@ -22,7 +22,8 @@ ghost margin; ClientServer.DistributedExtraction's phantoms: 3.2); --phantom SHA
 built-in VesselPhantom of that Shape as ClientServer.DistributedExtraction does (128^3,
 RadiusFraction 0.025; 0 = the ring, 4 = the Y, 5 = the tree, 6 = the loop network; use --lower
 550 --largest-radius 3.2) to --volume first. Each run prints its UpdatePipeline time (client wall clock, the server's run and
-the delivery) and, against the first rank count's run, the farthest point either way (voxels)
+the delivery), the raw modes' refinement over the whole stitched paths (DistributedRefinement*:
+pages, rounds, bytes, seconds) and, against the first rank count's run, the farthest point either way (voxels)
 and the share of points within 0.1 voxel either way.
 A measurement, not a test: nothing is asserted.
 """
@@ -104,7 +105,7 @@ def measure(volume, ranks, lower, upper, seed=None, automatic=False, radius=0.0,
                   for i in range(fd.GetNumberOfArrays())
                   if fd.GetArrayName(i).startswith(("Stitch", "SeedCode", "RootChoice", "Region",
                                                       "ClutterStretches", "ContactStretches",
-                                                      "NonTubular"))}
+                                                      "NonTubular", "DistributedRefinement"))}
         roots = fd.GetArray("RootChoiceRoots")
         if roots is not None:
             # Every root voxel of every component (whole index), not only the first.

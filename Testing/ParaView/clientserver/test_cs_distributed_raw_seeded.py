@@ -14,8 +14,9 @@ seed on its root vessel (port 1's first point):
   crosses the piece face z = 55 and comes back), the built-in topology (vessel ends,
   bifurcations; vtouch_skeleton_graph; no band stub left unmatched: StitchCutEndsUnmatched 0),
   the global SS code's rounds (SeedCodeRounds >= 2: every rank codes with the single run's SS
-  field, from the seed), 95 % of every rank's points within 0.1 voxel of the built-in ones and
-  every point within RAW_STAGES_VOXELS (the raw path's per-piece stages, below);
+  field, from the seed), the raw path's refinement run once on the whole stitched paths over
+  pages of the volume (DistributedRefinement*, h19r), ALL_WITHIN of every rank's points within
+  0.1 voxel of the built-in ones and every point within RAW_STAGES_VOXELS (below);
 - a seed on the background, on N ranks: the built-in message and an empty output; a watchdog
   kills the server if a run does not return (a rank waiting for the others forever);
 - the raw mode without a seed (AutomaticIntensityRange alone) on the same server, with
@@ -24,7 +25,8 @@ seed on its root vessel (port 1's first point):
   vtouch::DistributedVolumeRange), the region across the ranks with the held voxels from their
   owners (RegionHeldVoxelsFromOwners), the single run's automatic roots (RootChoiceRounds), the
   built-in topology, no unmatched cut end, every point within UNSEEDED_VOXELS of the built-in
-  run, no message.
+  run and every built-in point within UNSEEDED_FROM_VOXELS of the distributed run, the whole-path
+  refinement, no message.
 Exits non-zero on any failure.
 """
 
@@ -204,15 +206,36 @@ def distributed_unseeded(volume):
                                                               from_ref))
         check(to_ref <= UNSEEDED_VOXELS, "no seed: every point within %.1f voxels of the "
               "built-in run (%.3f)" % (UNSEEDED_VOXELS, to_ref))
-        # On 4 ranks one vessel end is shorter by 8 voxels (10 built-in points; Docs/
-        # CLIENT-SERVER.md, "The raw mode without a seed, distributed"): the other way round the
-        # bound is on how many built-in points lie farther than it.
-        far = int((e > UNSEEDED_VOXELS).sum())
-        allowed = 0 if RANKS == 2 else UNSEEDED_SHORT_TIP_POINTS
-        check(far <= allowed, "no seed: at most %d built-in points farther than %.1f voxels from "
-              "the distributed run (%d; farthest %.3f)"
-              % (allowed, UNSEEDED_VOXELS, far, from_ref))
+        check((d <= 0.1).mean() >= UNSEEDED_WITHIN, "no seed: %.1f %% of the points within 0.1 "
+              "voxel of the built-in run (at least %.0f %%)"
+              % (100.0 * (d <= 0.1).mean(), 100.0 * UNSEEDED_WITHIN))
+        # The other way round: every built-in point near a distributed one (the refinement on
+        # the whole stitched paths, h19r; Docs/CLIENT-SERVER.md, "The raw path's refinement over
+        # the whole stitched paths").
+        check(from_ref <= UNSEEDED_FROM_VOXELS, "no seed: every built-in point within %.1f voxel "
+              "of the distributed run (%.3f)" % (UNSEEDED_FROM_VOXELS, from_ref))
+    check_whole_path_refinement("no seed", data)
     simple.Delete(centerline)
+
+
+def check_whole_path_refinement(name, data):
+    """The raw path's refinement ran once on the whole stitched paths (h19r): its rounds, pages
+    and counts are reported, every rank had the first rank's range."""
+    rounds = field(data, "DistributedRefinementRounds")
+    pages = field(data, "DistributedRefinementPagesFetched")
+    differ = field(data, "DistributedRefinementRangesDiffer")
+    print("  %s: whole-path refinement: %s rounds, %s pages, %s bytes, %s s; retraced %s, cut %s, "
+          "removed %s" % (name, rounds, pages, field(data, "DistributedRefinementBytesGathered"),
+                          field(data, "DistributedRefinementSeconds"),
+                          field(data, "ContactStretchesRetraced"), field(data, "ClutterStretchesCut"),
+                          field(data, "NonTubularPathsRemoved")))
+    check(rounds is not None and rounds[0][0] >= 1 and pages is not None and pages[0][0] > 0,
+          "%s: the refinement ran on the whole stitched paths over fetched pages (%s rounds, %s "
+          "pages)" % (name, rounds, pages))
+    check(differ is not None and differ[0][0] == 0,
+          "%s: every rank has the first rank's range (%s differ)" % (name, differ))
+    check(field(data, "ContactStretchesRetraced") is not None,
+          "%s: the whole-path refinement's counts are reported" % name)
 
 
 def distributed(server, path, refs):
@@ -311,6 +334,7 @@ def distributed(server, path, refs):
                       "%s: every point within %.1f voxels of the built-in run (%.3f, %.3f; the "
                       "root envelope, no longer needed, is %.3f)"
                       % (name, RAW_STAGES_VOXELS, to_ref, from_ref, ENVELOPE[0]))
+                check_whole_path_refinement(name, data)
             simple.Delete(centerline)
         distributed_unseeded(volume)
         simple.Delete(volume)
@@ -326,15 +350,25 @@ ENVELOPE = [0.0]
 # Measured with the global SS code (h19w, 112^3): 98.3 % of the points within 0.1 voxel on 2
 # ranks, 97.3 % on 4 (before it: the seed's rank 97.3 %, the other 19.8 %); the farthest point
 # 1.76 voxel on both, in the seed's rank's box (the same point before the global field: not
-# the root; not traced further); the root envelope, the bound before, is 7.8 voxels. Bounds a
-# little beyond the measured: coding from roots of their own again fails the first on 2 ranks.
-ALL_WITHIN = 0.95
-RAW_STAGES_VOXELS = 2.0
+# the root; not traced further); the root envelope, the bound before, is 7.8 voxels. Since the
+# refinement runs on the whole stitched paths and the stitched paths run as their fragments
+# (h19r): on 2 ranks the single run's output (947 of 947 points, farthest 0.000 voxel, its
+# refinement counts); on 4, 98.0 % and 1.76 voxel, where the stitched skeleton itself differs
+# (its paths continue through one junction along another branch than the single run's: other
+# smoothing windows; Docs/CLIENT-SERVER.md). On 2 ranks main's per-piece refinement fails both
+# (98.8 %, 1.76).
+ALL_WITHIN = 1.0 if RANKS == 2 else 0.95
+RAW_STAGES_VOXELS = 0.1 if RANKS == 2 else 2.0
 # The raw mode without a seed (h19x): the built-in run's graph, range and message, and the bound
 # on the farthest point either way (set from the measurement, Docs/CLIENT-SERVER.md).
 UNSEEDED = {}
-UNSEEDED_VOXELS = 2.0  # measured 1.62 voxel on 2 and 4 ranks
-UNSEEDED_SHORT_TIP_POINTS = 12  # measured 10 on 4 ranks (one tip 8.07 voxels short)
+# Measured since h19e (a vessel end's tolerance from the vessel near it) and h19r (the refinement
+# on the whole stitched paths, the stitched paths in the fragments' order): the single run's
+# output on 2 and 4 ranks, 743 of 743 points, farthest 0.000 voxel either way (main before h19r:
+# 97.2 % within 0.1 voxel on 2 ranks, farthest 1.438; 98.8 % and 0.892 on 4).
+UNSEEDED_VOXELS = 0.1
+UNSEEDED_FROM_VOXELS = 0.1
+UNSEEDED_WITHIN = 1.0
 # The seed rank's owned box (lower, upper; world = index, 1 mm voxels): filled by owned_box().
 SEED_BOX = [None, None]
 
