@@ -15,15 +15,23 @@ namespace
 using namespace vtouch;
 using namespace vtouch_test;
 
-TEST(SkeletonStitcher, APathCutByOneFaceComesBackWhole)
+/// One path of 19 points from x = `x0` in steps of `dx` (1 mm voxels) across the face x = 10,
+/// with a small wave in y: a vessel that crosses the two pieces' face once.
+QSkeleton wavyLineAlongX(double x0, double dx)
 {
   QSkeleton whole;
   std::vector<SkeletonPoint> points;
   for (int i = 0; i < 19; ++i)
   {
-    points.push_back(point(1.0 + i, 5.0 + 0.2 * std::sin(i), 5.0));
+    points.push_back(point(x0 + dx * i, 5.0 + 0.2 * std::sin(i), 5.0));
   }
   whole.paths.push_back(path(0, points));
+  return whole;
+}
+
+TEST(SkeletonStitcher, APathCutByOneFaceComesBackWhole)
+{
+  const QSkeleton whole = wavyLineAlongX(1.0, 1.0);
   StitchReport report;
   const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
   EXPECT_EQ(s.validate(), "");
@@ -44,13 +52,7 @@ TEST(SkeletonStitcher, AStitchedPathRunsAsItsFragmentsRun)
   // fragment comes first and its free end is its tail. The stitched path runs head to tail as
   // the pieces' fragments (the coder's order) do, not from the first free end in the fragments'
   // order (h19r: the raw path's re-tracing runs forward along a path).
-  QSkeleton whole;
-  std::vector<SkeletonPoint> points;
-  for (int i = 0; i < 19; ++i)
-  {
-    points.push_back(point(19.0 - i, 5.0 + 0.2 * std::sin(i), 5.0));
-  }
-  whole.paths.push_back(path(0, points));
+  const QSkeleton whole = wavyLineAlongX(19.0, -1.0);
   StitchReport report;
   const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
   EXPECT_EQ(s.validate(), "");
