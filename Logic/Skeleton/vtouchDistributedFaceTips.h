@@ -79,6 +79,16 @@ public:
   /// Collective, once: takes part without clusters (a rank whose coder did not reach answer()).
   void join();
 
+  /// The coder's mask lost its outermost layer on shared faces before coding (the raw seeded
+  /// mode, SeededDistributedCoding::Settings::clearOuterLayer): the piece's cut faces are then
+  /// those of the evaluable box (PieceLayout::evaluable), one voxel inside the held box's. Off
+  /// (the default): the held box's. Call before answer(). Without it a vessel crossing such a
+  /// face would end in a cluster one voxel short of the held face: not a face tip, but a true tip
+  /// ranked by its own band (the 112^3 raw phantom seeded on 4 ranks traced a junction's other
+  /// branch through: Docs/CLIENT-SERVER.md, "The raw seeded mode on 4 ranks: the face tips at
+  /// the cleared layer").
+  void setOuterLayerCleared(bool cleared) { this->OuterLayerCleared = cleared; }
+
   bool joined() const { return this->Joined; }
   /// The rounds' outcome (the same rounds on every rank) and this rank's messages.
   const RoundsOutcome& outcome() const { return this->Outcome; }
@@ -90,6 +100,7 @@ private:
   PieceLayout Layout;
   int MaximumRounds;
   bool Joined = false;
+  bool OuterLayerCleared = false;
   RoundsOutcome Outcome;
 };
 
