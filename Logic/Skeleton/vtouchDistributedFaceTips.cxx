@@ -68,10 +68,11 @@ std::int64_t encode(std::int64_t wholeLinear, int dest, int ranks, std::int64_t 
 class Piece
 {
 public:
-  Piece(const skeleton::SkeletonTracer& t, const PieceLayout& l)
+  Piece(const skeleton::SkeletonTracer& t, const PieceLayout& l, bool outerLayerCleared)
     : tracer(t)
     , layout(l)
     , owned(l.owned[static_cast<std::size_t>(l.rank)])
+    , coded(outerLayerCleared ? l.evaluable(l.rank) : l.mine())
   {
   }
 
@@ -105,33 +106,33 @@ public:
     return tracer.descend(start, -1.0F, std::numeric_limits<std::size_t>::max()).voxels;
   }
 
-  /// The distance (mm) from local voxel `lin` to the nearest face of the held box that is not the
+  /// The distance (mm) from local voxel `lin` to the nearest face of the coded box that is not the
   /// volume's (a face the piece cuts); infinite when the held box is the whole volume.
   double toCutFace_mm(std::uint32_t lin) const
   {
-    const VoxelBox& held = layout.mine();
+    const VoxelBox& box = coded;
     const std::array<std::int64_t, 3> w = wholeOf(lin);
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t a = 0; a < 3; ++a)
     {
       const double spacing = tracer.grid.sp[a];
-      if (held.lo[a] > 0)
+      if (box.lo[a] > 0)
       {
-        best = std::min(best, static_cast<double>(w[a] - held.lo[a]) * spacing);
+        best = std::min(best, static_cast<double>(w[a] - box.lo[a]) * spacing);
       }
-      if (held.hi[a] < layout.wholeDims[a] - 1)
+      if (box.hi[a] < layout.wholeDims[a] - 1)
       {
-        best = std::min(best, static_cast<double>(held.hi[a] - w[a]) * spacing);
+        best = std::min(best, static_cast<double>(box.hi[a] - w[a]) * spacing);
       }
     }
     return best;
   }
 
-  /// Per cluster: touches a face of the held box that is not the volume's (cut by the piece).
+  /// Per cluster: touches a face of the coded box that is not the volume's (cut by the piece).
   std::vector<bool> cutClusters() const
   {
     const skeleton::VoxelGrid& g = tracer.grid;
-    const VoxelBox& held = layout.mine();
+    const VoxelBox& box = coded;
     std::vector<bool> cut(tracer.graph.clusters.size(), false);
     g.mask.forEach(
       [&](std::uint64_t lin)
@@ -143,8 +144,8 @@ public:
         const std::array<std::int64_t, 3> w = wholeOf(static_cast<std::uint32_t>(lin));
         for (std::size_t a = 0; a < 3; ++a)
         {
-          if ((w[a] == held.lo[a] && held.lo[a] > 0) ||
-              (w[a] == held.hi[a] && held.hi[a] < layout.wholeDims[a] - 1))
+          if ((w[a] == box.lo[a] && box.lo[a] > 0) ||
+              (w[a] == box.hi[a] && box.hi[a] < layout.wholeDims[a] - 1))
           {
             cut[clusterOf(static_cast<std::uint32_t>(lin))] = true;
             return;
@@ -157,6 +158,10 @@ public:
   const skeleton::SkeletonTracer& tracer;
   const PieceLayout& layout;
   const VoxelBox& owned;
+  /// The box the coder's mask fills: the held box, or (the raw seeded mode, whose region is exact
+  /// only there: SeededDistributedCoding::Settings::clearOuterLayer) the evaluable box. Its faces
+  /// that are not the volume's are where the piece cuts the vessels (the face tips' faces).
+  const VoxelBox coded;
 };
 
 /// One rank's side of the rounds: the chains it follows, what it sends and what it was told.
@@ -344,7 +349,7 @@ std::vector<std::int64_t> DistributedFaceTips::run(const skeleton::SkeletonTrace
   std::vector<std::pair<std::uint32_t, std::int64_t>> tips;
   if (tracer && !tracer->graph.clusters.empty())
   {
-    piece = std::make_unique<Piece>(*tracer, this->Layout);
+    piece = std::make_unique<Piece>(*tracer, this->Layout, this->OuterLayerCleared);
     cut = piece->cutClusters();
     const std::vector<skeleton::Cluster>& clusters = tracer->graph.clusters;
     for (std::uint32_t c = 0; c < clusters.size(); ++c)

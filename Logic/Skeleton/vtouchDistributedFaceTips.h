@@ -2,11 +2,13 @@
 // item 2, "A root in the middle of a tube", Docs/CLIENT-SERVER.md).
 //
 // A face tip is a cluster without higher neighbours that touches a face of the piece shared with
-// another piece: a local maximum of the SS code only because the piece ends there. The single
-// run has no such tip: it traces the farthest true tip beyond the face first (its tip order is by
-// the tip's band, Zhou & Toga's back-tracing, Yi & Hayward §3.1), or, when no tip's trace enters
-// the piece there, reaches that side only by closing a loop (LoopStage::closeLoops' side B). The
-// root's rank has to know which, or it orders and joins the root's two sides unlike the single run.
+// another piece (where the coded mask ends: the held box's face, or the evaluable box's in the raw
+// seeded mode, setOuterLayerCleared): a local maximum of the SS code only because the piece ends
+// there. The single run has no such tip: it traces the farthest true tip beyond the face first
+// (its tip order is by the tip's band, Zhou & Toga's back-tracing, Yi & Hayward §3.1), or, when
+// no tip's trace enters the piece there, reaches that side only by closing a loop
+// (LoopStage::closeLoops' side B). The root's rank has to know which, or it orders and joins the
+// root's two sides unlike the single run.
 //
 // How: the traces of the true tips, without touches (SkeletonTracer::descend on the global field,
 // which steps from a voxel to its lower neighbour of largest BS: memoryless, so the same chain on
@@ -79,6 +81,16 @@ public:
   /// Collective, once: takes part without clusters (a rank whose coder did not reach answer()).
   void join();
 
+  /// The coder's mask lost its outermost layer on shared faces before coding (the raw seeded
+  /// mode, SeededDistributedCoding::Settings::clearOuterLayer): the piece's cut faces are then
+  /// those of the evaluable box (PieceLayout::evaluable), one voxel inside the held box's. Off
+  /// (the default): the held box's. Call before answer(). Without it a vessel crossing such a
+  /// face would end in a cluster one voxel short of the held face: not a face tip, but a true tip
+  /// ranked by its own band (the 112^3 raw phantom seeded on 4 ranks traced a junction's other
+  /// branch through: Docs/CLIENT-SERVER.md, "The raw seeded mode on 4 ranks: the face tips where
+  /// the coded mask ends").
+  void setOuterLayerCleared(bool cleared) { this->OuterLayerCleared = cleared; }
+
   bool joined() const { return this->Joined; }
   /// The rounds' outcome (the same rounds on every rank) and this rank's messages.
   const RoundsOutcome& outcome() const { return this->Outcome; }
@@ -90,6 +102,7 @@ private:
   PieceLayout Layout;
   int MaximumRounds;
   bool Joined = false;
+  bool OuterLayerCleared = false;
   RoundsOutcome Outcome;
 };
 

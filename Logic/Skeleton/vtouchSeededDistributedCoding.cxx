@@ -17,7 +17,17 @@ std::string voxelText(const std::array<std::int64_t, 3>& c)
          ")";
 }
 
-/// Clears `mask`'s vessel voxels outside rank `layout.rank`'s evaluable box; returns how many.
+/// What a rank tells the others before the rounds (one AllGather).
+enum Slot : std::size_t
+{
+  kUsable = 0,   ///< 1: it can take part
+  kProposal = 1, ///< 0: none, 1: a root, 2: its seed block holds no vessel voxel
+  kRoot = 2,     ///< the root's whole linear index
+  kOwner = 3,    ///< 1: it owns the seed voxel
+  kSlots = 4
+};
+} // namespace
+
 std::uint64_t clearOuterLayer(SparseVesselMask& mask, const PieceLayout& layout)
 {
   const VoxelBox evaluable = layout.evaluable(layout.rank);
@@ -39,17 +49,6 @@ std::uint64_t clearOuterLayer(SparseVesselMask& mask, const PieceLayout& layout)
   mask.finalize();
   return outside.size();
 }
-
-/// What a rank tells the others before the rounds (one AllGather).
-enum Slot : std::size_t
-{
-  kUsable = 0,   ///< 1: it can take part
-  kProposal = 1, ///< 0: none, 1: a root, 2: its seed block holds no vessel voxel
-  kRoot = 2,     ///< the root's whole linear index
-  kOwner = 3,    ///< 1: it owns the seed voxel
-  kSlots = 4
-};
-} // namespace
 
 SeededDistributedCoding::SeededDistributedCoding(RankCollectives& collectives,
   PieceLayout layout,

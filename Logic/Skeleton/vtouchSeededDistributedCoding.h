@@ -37,6 +37,11 @@
 namespace vtouch
 {
 
+/// Clears `mask`'s vessel voxels outside rank `layout.rank`'s evaluable box (its outermost layer
+/// on faces that are not the volume's: the raw seeded mode, Settings::clearOuterLayer); returns
+/// how many. `mask`: the rank's held box, local linear index; finalized again.
+std::uint64_t clearOuterLayer(SparseVesselMask& mask, const PieceLayout& layout);
+
 /// Thrown by code() and join() on every rank together, with the same message.
 class SeededDistributedCodingError : public std::runtime_error
 {
@@ -89,7 +94,6 @@ public:
 
   bool joined() const { return this->Joined; }
   const Report& report() const { return this->Result; }
-
 
 private:
   std::vector<float> take(SparseVesselMask& mask, bool usable);

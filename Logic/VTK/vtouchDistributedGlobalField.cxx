@@ -197,6 +197,7 @@ std::unique_ptr<DistributedGlobalField> DistributedGlobalField::seeded(
   settings.clearOuterLayer = clearOuterLayer;
   PieceLayout layout = gatherLayout(*f->Collectives, input, input != nullptr, whole);
   f->FaceTips = std::make_unique<DistributedFaceTips>(*f->Collectives, layout);
+  f->FaceTips->setOuterLayerCleared(clearOuterLayer); // the face tips where the coded mask ends
   f->Field = std::make_unique<SeededSource>(*f->Collectives,
     std::move(layout),
     spacingOf(input),

@@ -5,6 +5,7 @@
 #include "vtouchEveryRank.h"
 #include "vtouchPhantomGenerator.h"
 #include "vtouchPieceGrid.h"
+#include "vtouchSeededDistributedCoding.h"
 #include "vtouchSkeletonClipper.h"
 #include "vtouchSkeletonOverlapResolver.h"
 #include "vtouchSkeletonPathSmoothing.h"
@@ -119,7 +120,8 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   const std::array<int, 3>& counts,
   int ghost_voxels,
   bool seeded,
-  const Index& seed)
+  const Index& seed,
+  bool clearOuterLayer)
 {
   DistributedStitchRun run;
   run.dims = dims;
@@ -176,11 +178,16 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
       filter->SetSmoothingWindow(kPositionsKeptWindow_mm);
       // The face tips' order across the pieces, as the filter's DistributedGlobalField gives it.
       DistributedFaceTips faceTips(c, l);
+      faceTips.setOuterLayerCleared(clearOuterLayer);
       filter->SetGlobalFaceTips(
         [&faceTips](const skeleton::SkeletonTracer& t) { return faceTips.answer(t); });
       filter->SetGlobalSeedCode(
         [&](SparseVesselMask& mask)
         {
+          if (clearOuterLayer)
+          {
+            vtouch::clearOuterLayer(mask, l); // as SeededDistributedCoding (the raw seeded mode)
+          }
           DistributedSeedCode code(l, mask, { 1.0, 1.0, 1.0 });
           code.run(c, roots);
           return code.ss();

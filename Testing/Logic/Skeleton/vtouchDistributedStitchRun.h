@@ -50,14 +50,18 @@ DistributedStitchRun runDistributedStitch(const PhantomSpec& spec,
   bool seeded = false,
   const std::array<std::int64_t, 3>& seed = {});
 
-/// The same on any volume: `voxels` (x fastest) of `dims` voxels of 1 mm at 0.
+/// The same on any volume: `voxels` (x fastest) of `dims` voxels of 1 mm at 0. `clearOuterLayer`:
+/// each rank's mask loses its outermost layer on shared faces before coding and the face tips
+/// are at the evaluable box's faces, as the filter's raw seeded mode codes its region
+/// (SeededDistributedCoding::Settings::clearOuterLayer).
 DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   const std::array<std::int64_t, 3>& dims,
   double lower,
   const std::array<int, 3>& counts,
   int ghost_voxels,
   bool seeded = false,
-  const std::array<std::int64_t, 3>& seed = {});
+  const std::array<std::int64_t, 3>& seed = {},
+  bool clearOuterLayer = false);
 
 /// The largest distance from a point of `a` to the nearest point of `b`, mm; only points of `a`
 /// farther than `awayFrom_mm` from `avoid` count (a root's neighbourhood; `awayFrom_mm` 0: all).

@@ -353,12 +353,13 @@ ENVELOPE = [0.0]
 # the root; not traced further); the root envelope, the bound before, is 7.8 voxels. Since the
 # refinement runs on the whole stitched paths and the stitched paths run as their fragments
 # (h19r): on 2 ranks the single run's output (947 of 947 points, farthest 0.000 voxel, its
-# refinement counts); on 4, 98.0 % and 1.76 voxel, where the stitched skeleton itself differs
-# (its paths continue through one junction along another branch than the single run's: other
-# smoothing windows; Docs/CLIENT-SERVER.md). On 2 ranks main's per-piece refinement fails both
-# (98.8 %, 1.76).
-ALL_WITHIN = 1.0 if RANKS == 2 else 0.95
-RAW_STAGES_VOXELS = 0.1 if RANKS == 2 else 2.0
+# refinement counts); on 4, 98.0 % and 1.76 voxel until h19s (the stitched paths continued
+# through one junction along another branch: the cut ends at the cleared outer layer were not
+# face tips, Docs/CLIENT-SERVER.md, "The raw seeded mode on 4 ranks: the face tips where the
+# coded mask ends"); since h19s the single run's output on 4 ranks too (947 of 947 points,
+# 0.000 voxel). On 2 ranks main's per-piece refinement fails both (98.8 %, 1.76).
+ALL_WITHIN = 1.0
+RAW_STAGES_VOXELS = 0.1
 # The raw mode without a seed (h19x): the built-in run's graph, range and message, and the bound
 # on the farthest point either way (set from the measurement, Docs/CLIENT-SERVER.md).
 UNSEEDED = {}
