@@ -14,6 +14,17 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 
+/// How close (voxels) to the mid-line tolerance a point's distance counts as a tie, decided as
+/// off the mid-line (project rule, h19m; Docs/CENTERLINES.md, "Raw angiograms" step 5). The run
+/// lengths are whole steps of a quarter voxel and the offset half steps, so the distance often
+/// equals the tolerance (1.25 voxels = 10 half steps) in exact arithmetic, and only the last bits
+/// of p decided: the distributed run's p differs from the single run's there (its coder computed
+/// p in its piece's frame, not the whole volume's; 2e-14 mm on the TOF-MRA), which removed a
+/// 4-point path on 2 ranks that the single run keeps (0.65104112029075001 against
+/// 0.65104112029075978 mm, the tolerance 0.65104112029075623 mm). 1e-9 voxel: far above the
+/// rounding of positions (1e-13 voxel), far below any geometric difference (a step is 0.25).
+constexpr double kMidLineTie_voxels = 1e-9;
+
 bool sectionIsTubeLike(const SectionSampler& sampler,
   double voxel_mm,
   const Vec3& p,
@@ -60,7 +71,10 @@ bool sectionIsTubeLike(const SectionSampler& sampler,
       continue; // not a band (a blob or a wide structure: the neck cutter's business)
     }
     const Vec3 centre = mid + normal * offset;
-    if (std::abs((p - centre).dot(normal)) <= s.midLineTolerance_voxels * voxel_mm)
+    // On the tolerance's edge (a tie: the runs are whole steps, the offset half steps) p is off
+    // the mid-line, whatever its last bits: project rule, h19m, kMidLineTie_voxels.
+    const double fromMidLine_mm = std::abs((p - centre).dot(normal));
+    if (fromMidLine_mm < (s.midLineTolerance_voxels - kMidLineTie_voxels) * voxel_mm)
     {
       return false;
     }
