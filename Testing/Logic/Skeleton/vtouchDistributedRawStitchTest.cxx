@@ -13,8 +13,8 @@
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchSectionSampler.h"
 #include "vtouchEveryRank.h"
-#include "vtouchPhantomGenerator.h"
 #include "vtouchPieceGrid.h"
+#include "vtouchRawPhantomVolume.h"
 #include "vtouchPieceOwnership.h"
 #include "vtouchRankPiece.h"
 
@@ -34,21 +34,12 @@ TEST(DistributedRawStitch,
   TheRawRegionIsTheSingleRunsOnTwoAndFourPiecesAndItsStitchWithinATenthOfAVoxel)
 {
   itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(1); // ITK on each rank's own thread
-  PhantomSpec spec; // the raw angiogram: 112^3, 60 segments, 4 clutter objects, seed 3, noise 10
-  spec.noiseStdDev = 10.0;
-  spec.shape = PhantomShape::RawAngiogram;
-  spec.dimensions = { 112, 112, 112 };
-  spec.angiogramSegments = 60;
-  spec.clutterCount = 4;
-  spec.seed = 3;
-  const PhantomGenerator generator(spec);
-  ASSERT_TRUE(generator.ok()) << generator.error();
-  const std::array<std::int64_t, 3> dims{ 112, 112, 112 };
-  std::vector<float> voxels(112U * 112U * 112U);
-  ASSERT_TRUE(generator.fill(voxels.data()));
-  VolumeView<float> whole;
-  whole.voxels = voxels.data();
-  whole.dims = dims;
+  // The raw angiogram: 112^3, 60 segments, 4 clutter objects, seed 3, noise 10.
+  const test::FloatVolume phantom = test::rawPhantomVolume(112, 3, 60, 10.0);
+  ASSERT_TRUE(phantom.ok) << phantom.error;
+  const std::array<std::int64_t, 3>& dims = phantom.dims;
+  const std::vector<float>& voxels = phantom.voxels;
+  const VolumeView<float> whole = phantom.view();
   const VesselCandidateRegion::Settings s; // automatic, tubes only, no seed
   const VesselCandidateRegion::Result single = VesselCandidateRegion::extract(whole, s);
   ASSERT_TRUE(single.ok) << single.message;
@@ -165,21 +156,12 @@ TEST(DistributedRawStitch,
   TheSeededRegionWithoutItsOuterLayerTracesTheSingleRunsJunctionsOnFourPieces)
 {
   itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(1); // ITK on each rank's own thread
-  PhantomSpec spec; // the raw angiogram of ClientServer.DistributedRawSeeded (as above)
-  spec.noiseStdDev = 10.0;
-  spec.shape = PhantomShape::RawAngiogram;
-  spec.dimensions = { 112, 112, 112 };
-  spec.angiogramSegments = 60;
-  spec.clutterCount = 4;
-  spec.seed = 3;
-  const PhantomGenerator generator(spec);
-  ASSERT_TRUE(generator.ok()) << generator.error();
-  const std::array<std::int64_t, 3> dims{ 112, 112, 112 };
-  std::vector<float> voxels(112U * 112U * 112U);
-  ASSERT_TRUE(generator.fill(voxels.data()));
-  VolumeView<float> whole;
-  whole.voxels = voxels.data();
-  whole.dims = dims;
+  // The raw angiogram of ClientServer.DistributedRawSeeded (as above).
+  const test::FloatVolume phantom = test::rawPhantomVolume(112, 3, 60, 10.0);
+  ASSERT_TRUE(phantom.ok) << phantom.error;
+  const std::array<std::int64_t, 3>& dims = phantom.dims;
+  const std::vector<float>& voxels = phantom.voxels;
+  const VolumeView<float> whole = phantom.view();
   VesselCandidateRegion::Settings s; // automatic, seeded as measure_cs_topology.py --seed
   s.useSeed = true;
   s.seed = { 45, 61, 8 }; // (44.88, 60.88, 8.0) mm, 1 mm voxels
