@@ -7,8 +7,10 @@ session; a session whose every parameter is written from the table's defaults (a
 writes them) renders the same forces as one left at its defaults, and one default drifted by
 5 % does not."""
 
+import atexit
 import json
 import os
+import shutil
 import sys
 import tempfile
 
@@ -101,7 +103,9 @@ chosen = {"LdgfLambda": 0.02, "IdleDwell": 3.0, "ProxyKappaLow": 0.2, "TracerRul
           "ProxyTickAtBifurcations": 1, "ReleaseButtonMask": 4, "Zoom": 2.5}
 session.SetHapticParameters(**chosen)
 simple.RenameSource("ParameterSession", session.proxy)
-state = os.path.join(tempfile.mkdtemp(prefix="vesseltouch-parameters-"), "parameters.pvsm")
+state_folder = tempfile.mkdtemp(prefix="vesseltouch-parameters-")
+atexit.register(shutil.rmtree, state_folder, True)
+state = os.path.join(state_folder, "parameters.pvsm")
 simple.SaveState(state)
 reader = r"""
 import json

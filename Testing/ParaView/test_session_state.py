@@ -8,8 +8,10 @@ beside the existing ones, so a second "VesselTouchSession" appears. The old sess
 as the loaded one is registered (force to zero), vesseltouch.logic() returns the loaded one (not
 running), and the old one is deleted: exactly one session stays registered."""
 
+import atexit
 import json
 import os
+import shutil
 import sys
 import tempfile
 
@@ -42,6 +44,7 @@ if force is not None:
     check.equal(list(force.GetData()), [0.0, 0.0, 0.0], "no device open: zero device force")
 
 work = tempfile.mkdtemp(prefix="vesseltouch-state-")
+atexit.register(shutil.rmtree, work, True)
 state = os.path.join(work, "session.pvsm")
 simple.SaveState(state)
 check.true(os.path.exists(state), "state written")

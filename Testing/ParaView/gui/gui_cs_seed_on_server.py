@@ -20,6 +20,7 @@ Screenshots in <build>/Testing/gui-cs-seed. Runs with Debian's python3 under vto
 
 import os
 import re
+import shutil
 import sys
 import tempfile
 
@@ -165,6 +166,7 @@ def main():
         code = server.stop()
         check(code is not None, "the server exited")
         check(wait_until(lambda: port_is_free(port), 10.0), "port %d is free again" % port)
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 main()

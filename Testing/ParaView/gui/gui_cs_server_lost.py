@@ -18,6 +18,7 @@ in <build>/Testing/gui-cs-server-lost. Runs with Debian's python3 under vtouch-x
 
 import glob
 import os
+import shutil
 import sys
 import tempfile
 
@@ -101,6 +102,7 @@ def main():
         code = server.stop()
         check(code is not None, "the server's processes ended")
         check(wait_until(lambda: port_is_free(port), 10.0), "port %d is free again" % port)
+        shutil.rmtree(temp, ignore_errors=True)  # the saved skeleton and Open MPI's session files
 
 
 main()

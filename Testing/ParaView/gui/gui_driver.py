@@ -165,10 +165,16 @@ class GuiDriver:
             self.xdotool("key", "Escape")
             time.sleep(0.5)
 
-    def answer_dialog(self, title, key, seconds=10.0):
-        """Waits for a window titled ``title`` and presses ``key`` in it; whether it appeared."""
+    def answer_dialog(self, title, key, seconds=60.0, unless=None):
+        """Waits for a window titled ``title`` and presses ``key`` in it; whether it appeared.
+        Returns False at once when ``unless()`` holds (the dialog's work is done without it).
+        A modal dialog holds the driver's replies until it closes, and on a loaded machine it
+        may take far more than a few seconds to appear: the wait ends as soon as it does, so
+        the bound is generous."""
         deadline = time.time() + seconds
         while time.time() < deadline:
+            if unless is not None and unless():
+                return False
             found = subprocess.run(["xdotool", "search", "--onlyvisible", "--name", title],
                                    env=self.env, capture_output=True, text=True, check=False)
             windows = found.stdout.split()

@@ -158,7 +158,11 @@ def body(gui, check):
     gui.run("savestate", state)
     state_py = os.path.join(gui.work, "session_state.py")
     gui.run("savestate", state_py)
-    gui.answer_dialog("Python State Options", "Return", seconds=5)  # when ParaView asks
+    # ParaView asks for the Python state's options in a modal dialog, which holds the driver's
+    # replies until it is answered; under load it appeared after the 5 s once waited here, and
+    # the test then timed out at 600 s with ParaView waiting on it.
+    gui.answer_dialog("Python State Options", "Return", seconds=120,
+                      unless=lambda: os.path.exists(state_py))
     check(gui.wait_until(lambda s: os.path.exists(state_py), seconds=20),
           "the Python state was written")
 
