@@ -23,8 +23,10 @@
 
 #include "vtouchRankCollectives.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace vtouch
