@@ -3,6 +3,7 @@
 #include "vtouchDistributedFaceTips.h"
 
 #include "vtouchCollectiveRounds.h"
+#include "vtouchDistributedTipOrder.h"
 #include "vtouchSkeletonClusterStage.h"
 #include "vtouchSkeletonTracer.h"
 
@@ -58,7 +59,8 @@ CollectiveRounds roundsOfFaceTips()
     CollectiveRounds::Payload::IndicesAndValues);
 }
 
-/// One message: where (whole linear index), to whom, which kind, in one int64 (the value: band).
+/// One message: where (whole linear index), to whom, which kind, in one int64 (the value: the tip's
+/// rank key).
 std::int64_t encode(std::int64_t wholeLinear, int dest, int ranks, std::int64_t kind)
 {
   return ((wholeLinear * ranks) + dest) * 2 + kind;
@@ -174,33 +176,34 @@ public:
   {
   }
 
-  /// Follows the chain from local voxel `start` of tip band `band` through the owned box.
-  void follow(std::uint32_t start, std::int64_t band, CollectiveRounds::Report& out)
+  /// Follows the chain from local voxel `start` of its tip's rank key `key` (DistributedTipOrder:
+  /// the tip's band and its place in the single run's order) through the owned box.
+  void follow(std::uint32_t start, std::int64_t key, CollectiveRounds::Report& out)
   {
-    auto [it, fresh] = followed.emplace(start, band);
-    if (!fresh && it->second >= band)
+    auto [it, fresh] = followed.emplace(start, key);
+    if (!fresh && it->second >= key)
     {
-      return; // this chain carries a band at least as large already
+      return; // this chain carries a rank key at least as large already
     }
-    it->second = band;
+    it->second = key;
     for (const std::uint32_t v : piece->chain(start))
     {
       const std::array<std::int64_t, 3> w = piece->wholeOf(v);
       const std::int64_t lin = layout.wholeLinear(w);
       if (!piece->owned.contains(w))
       {
-        send(out, lin, layout.ownerOf(w), kContinue, band);
+        send(out, lin, layout.ownerOf(w), kContinue, key);
         return;
       }
       for (int r = 0; r < layout.ranks(); ++r)
       {
         if (r != layout.rank && layout.held[static_cast<std::size_t>(r)].contains(w))
         {
-          auto [s, added] = crossedSent.emplace(encode(lin, r, layout.ranks(), kCrossed), band);
-          if (added || s->second < band)
+          auto [s, added] = crossedSent.emplace(encode(lin, r, layout.ranks(), kCrossed), key);
+          if (added || s->second < key)
           {
-            s->second = band;
-            send(out, lin, r, kCrossed, band);
+            s->second = key;
+            send(out, lin, r, kCrossed, key);
           }
         }
       }
@@ -208,7 +211,8 @@ public:
   }
 
   /// The messages addressed to this rank in the last exchange: chains to follow (returned) and
-  /// crossed voxels (kept, by local voxel: the largest band).
+  /// crossed voxels (kept, by local voxel: the largest rank key, the tip the single run traces
+  /// first).
   std::vector<std::pair<std::uint32_t, std::int64_t>> receive(
     const CollectiveRounds::Exchange& previous)
   {
@@ -230,16 +234,16 @@ public:
         {
           continue; // not a coded vessel voxel here (a component this rank does not code)
         }
-        const auto band = static_cast<std::int64_t>(previous.values[r][q]);
+        const auto key = static_cast<std::int64_t>(previous.values[r][q]);
         const auto lin = static_cast<std::uint32_t>(local);
         if (kind == kContinue)
         {
-          chains.emplace_back(lin, band);
+          chains.emplace_back(lin, key);
         }
         else
         {
-          std::int64_t& b = crossed.emplace(lin, band).first->second;
-          b = std::max(b, band);
+          std::int64_t& b = crossed.emplace(lin, key).first->second;
+          b = std::max(b, key);
         }
       }
     }
@@ -248,44 +252,54 @@ public:
 
   const Piece* piece;
   const PieceLayout& layout;
-  std::unordered_map<std::uint32_t, std::int64_t> followed;   // local start -> band
-  std::unordered_map<std::int64_t, std::int64_t> crossedSent; // message -> band
-  std::unordered_map<std::uint32_t, std::int64_t> crossed;    // local voxel -> band
+  std::unordered_map<std::uint32_t, std::int64_t> followed;   // local start -> key
+  std::unordered_map<std::int64_t, std::int64_t> crossedSent; // message -> key
+  std::unordered_map<std::uint32_t, std::int64_t> crossed;    // local voxel -> key
 
 private:
   void send(CollectiveRounds::Report& out,
     std::int64_t wholeLinear,
     int dest,
     std::int64_t kind,
-    std::int64_t band) const
+    std::int64_t key) const
   {
     if (dest < 0)
     {
       return; // outside the volume: not a vessel voxel's neighbour
     }
     out.indices.push_back(encode(wholeLinear, dest, layout.ranks(), kind));
-    out.values.push_back(static_cast<double>(band));
+    out.values.push_back(static_cast<double>(key));
   }
 };
 
-/// The face tips' answers from the crossed voxels (see the header).
+/// The face tips' answers from the crossed voxels, and the true tips' own rank keys (see the
+/// header).
 std::vector<std::int64_t> answers(const Piece& piece,
   const std::unordered_map<std::uint32_t, std::int64_t>& crossed,
-  const std::vector<bool>& cut)
+  const std::vector<bool>& cut,
+  const DistributedTipOrder& order)
 {
   const std::vector<skeleton::Cluster>& clusters = piece.tracer.graph.clusters;
   const skeleton::VoxelGrid& grid = piece.tracer.grid;
-  std::unordered_map<std::uint32_t, std::int64_t> crossedCluster; // cluster -> largest band
-  for (const auto& [lin, band] : crossed)
+  std::unordered_map<std::uint32_t, std::int64_t> crossedCluster; // cluster -> largest key
+  for (const auto& [lin, key] : crossed)
   {
-    std::int64_t& b = crossedCluster.emplace(piece.clusterOf(lin), band).first->second;
-    b = std::max(b, band);
+    std::int64_t& b = crossedCluster.emplace(piece.clusterOf(lin), key).first->second;
+    b = std::max(b, key);
   }
   std::vector<std::int64_t> result(clusters.size(), DistributedFaceTips::kNotAFaceTip);
   for (std::uint32_t c = 0; c < clusters.size(); ++c)
   {
-    if (!clusters[c].higher.empty() || clusters[c].band == 0 || !cut[c])
+    if (!clusters[c].higher.empty() || clusters[c].band == 0)
     {
+      continue;
+    }
+    if (!cut[c])
+    {
+      // A true tip (also one whose trace another rank follows): its place in the single run's
+      // order, so that it and a face tip answered with another tip of its band go in that order.
+      result[c] = order.rankKeyOf(
+        piece.layout.wholeLinear(piece.wholeOf(clusters[c].firstVoxel)), clusters[c].band);
       continue;
     }
     result[c] = DistributedFaceTips::kNoTipBeyond;
@@ -345,8 +359,10 @@ std::vector<std::int64_t> DistributedFaceTips::run(const skeleton::SkeletonTrace
   std::unique_ptr<Piece> piece;
   std::vector<bool> cut;
   // This rank's own true tips: clusters without higher neighbours, out of the root band, not cut
-  // by a shared face, their start voxel owned (each followed by one rank).
+  // by a shared face, their start voxel owned (each followed by one rank), with their rank keys.
   std::vector<std::pair<std::uint32_t, std::int64_t>> tips;
+  std::vector<std::uint32_t> tipClusters;
+  std::vector<DistributedTipOrder::Tip> ownTips;
   if (tracer && !tracer->graph.clusters.empty())
   {
     piece = std::make_unique<Piece>(*tracer, this->Layout, this->OuterLayerCleared);
@@ -361,9 +377,28 @@ std::vector<std::int64_t> DistributedFaceTips::run(const skeleton::SkeletonTrace
       const std::uint32_t start = skeleton::ClusterStage::tipStart(tracer->grid, clusters[c]);
       if (piece->owned.contains(piece->wholeOf(start)))
       {
-        tips.emplace_back(start, static_cast<std::int64_t>(clusters[c].band));
+        tipClusters.push_back(c);
+        ownTips.push_back({ clusters[c].band,
+          piece->ssOf(clusters[c].firstVoxel),
+          this->Layout.wholeLinear(piece->wholeOf(clusters[c].firstVoxel)) });
       }
     }
+  }
+  // The single run's order of every true tip (collective: every rank, with or without tips).
+  DistributedTipOrder order;
+  try
+  {
+    order.gather(this->Collectives, ownTips);
+  }
+  catch (const std::runtime_error& e)
+  {
+    throw DistributedFaceTipsError(e.what()); // on every rank: they gathered the same list
+  }
+  for (std::size_t i = 0; i < tipClusters.size(); ++i)
+  {
+    const skeleton::Cluster& c = tracer->graph.clusters[tipClusters[i]];
+    tips.emplace_back(skeleton::ClusterStage::tipStart(tracer->grid, c),
+      order.rankKeyOf(ownTips[i].firstWhole, c.band));
   }
   Follower follower(piece.get(), this->Layout);
   this->Outcome = roundsOfFaceTips().run(
@@ -373,9 +408,9 @@ std::vector<std::int64_t> DistributedFaceTips::run(const skeleton::SkeletonTrace
       const std::vector<std::pair<std::uint32_t, std::int64_t>> chains =
         previous.rounds == 0 ? tips : follower.receive(previous);
       CollectiveRounds::Report report;
-      for (const auto& [start, band] : chains)
+      for (const auto& [start, key] : chains)
       {
-        follower.follow(start, band, report);
+        follower.follow(start, key, report);
       }
       return report;
     },
@@ -389,7 +424,7 @@ std::vector<std::int64_t> DistributedFaceTips::run(const skeleton::SkeletonTrace
   {
     return std::vector<std::int64_t>(tracer ? tracer->graph.clusters.size() : 0, kNotAFaceTip);
   }
-  return answers(*piece, follower.crossed, cut);
+  return answers(*piece, follower.crossed, cut, order);
 }
 
 } // namespace vtouch

@@ -23,13 +23,16 @@
 // A face tip's answer: its own descent (no touches) from the face, the first cluster within a few
 // bands plus two of the vessel's radii (kAnswerWindow_*) of where the descent leaves the face
 // (its last voxel within a radius of a cut face, or in a cluster a shared face cuts) that holds
-// a voxel of a crossing chain gives the largest band among those voxels; none: no tip's trace
-// enters the piece there (a loop's second side). The radius is the largest BS of the clusters
-// the descent crossed, not the face tip's own: where a vessel crosses the face obliquely that is
-// a sliver at the wall (h19k); where a vessel grazes the face, its axis outside, the descent runs
-// along cut slabs (h19j).
-// Departure (named): tips tied in rank and in their own band (TraceStage) are ordered by cluster
-// index, which differs between a piece and the single run.
+// a voxel of a crossing chain gives the largest rank key among those voxels; none: no tip's trace
+// enters the piece there (a loop's second side). The chains carry their tip's rank key
+// (vtouch::DistributedTipOrder, gathered once before the rounds: the band, then the tip's place
+// in the single run's order), not its band alone (h17j): a face tip answered with a tip of the
+// band of a true tip the rank holds goes before or after it as the single run traces them. The
+// radius is the largest BS of the clusters the descent crossed, not the face tip's own: where a
+// vessel crosses the face obliquely that is a sliver at the wall (h19k); where a vessel grazes the
+// face, its axis outside, the descent runs along cut slabs (h19j). Departure (named): tips tied in
+// rank and in their own band (the face tips answered with one true tip, TraceStage) are ordered by
+// cluster index, which may differ between a piece and the single run.
 //
 // Every rank must call answer() or join() exactly once per run (a collective), with or without a
 // piece or vessel; a round cap (kDefaultMaximumRounds, a project rule as the SS field's) stops
@@ -76,7 +79,9 @@ public:
 
   /// Collective, once: per cluster of `tracer`'s graph (the global-field coder's, after its
   /// clusters and before its traces, on this rank's held box), kNotAFaceTip, kNoTipBeyond, or the
-  /// band of the farthest true tip whose trace enters the piece through that face tip.
+  /// rank key (DistributedTipOrder) of the true tip the single run traces first of those whose
+  /// traces enter the piece through that face tip; a true tip (not cut by a shared face) gets its
+  /// own rank key (DistributedTipOrder::unplacedRankKey when no rank gathered it).
   std::vector<std::int64_t> answer(const skeleton::SkeletonTracer& tracer);
   /// Collective, once: takes part without clusters (a rank whose coder did not reach answer()).
   void join();

@@ -2,6 +2,7 @@
 #include "vtouchSkeletonTraceStage.h"
 
 #include "vtouchDistributedFaceTips.h"
+#include "vtouchDistributedTipOrder.h"
 
 #include "vtouchSkeletonClusterStage.h"
 #include "vtouchSkeletonPaths.h"
@@ -52,10 +53,14 @@ std::size_t TraceStage::run()
       root = c;
     }
   }
+  // The rank key (DistributedTipOrder): the band, then the place in the single run's order of
+  // the volume's tips (h17j: a face tip answered with a tip of the band of a true tip this rank
+  // holds goes before or after it as the single run traces the two). Without answers (the single
+  // run) every tip is unplaced: the band alone.
   const auto rank = [&](std::uint32_t c)
-  { return answer(c) >= 0 ? answer(c) : static_cast<std::int64_t>(clusters[c].band); };
+  { return answer(c) >= 0 ? answer(c) : DistributedTipOrder::unplacedRankKey(clusters[c].band); };
   // Ties in rank: the higher own band first (h19j). A tie between different own bands needs a
-  // face tip (a true tip's rank is its band): a true tip and the face tips answered with its band
+  // face tip (a true tip's rank is its own): a true tip and the face tips answered with its rank
   // are where its chain starts and enters the piece again, and the single run's one trace meets
   // them in descending SS; traced the other way round, the later entry's trace starts a path in the
   // middle of the chain, and the earlier one joins it as a branch. Then the cluster index.

@@ -33,9 +33,10 @@ public:
   /// component). Off (the single run): every trace ends at the root.
   ///
   /// `faceTipBands` (the global field on several ranks, VoxelCodingParameters::faceTipBands; per
-  /// cluster, or null): a face tip (a local maximum of SS only because the piece ends there) is
-  /// ordered among the tips by the band of the single run's tip beyond the face instead of its
-  /// own; one with no tip beyond (DistributedFaceTips::kNoTipBeyond) is the side the single run
+  /// cluster, or null): the tips' rank keys (DistributedTipOrder: the band, then the place in the
+  /// single run's order of the volume's tips, h17j). A true tip has its own; a face tip (a local
+  /// maximum of SS only because the piece ends there) has the single run's tip's beyond the face;
+  /// one with no tip beyond (DistributedFaceTips::kNoTipBeyond) is the side the single run
   /// reaches only by closing a loop: it is traced after every tip as LoopStage::closeLoops' side
   /// B is, attached where it touches (no spur test, no joinAlongBranchAxis). Tips tied in rank
   /// go by their own band, higher first (one chain's entries in the single run's order), then

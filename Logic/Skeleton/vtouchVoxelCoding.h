@@ -48,10 +48,10 @@ struct VoxelCodingParameters
   /// the seed is then not used. Not owned: it must outlive run().
   const std::vector<float>* globalSs_mm = nullptr;
   /// With globalSs_mm on several ranks: the single run's answer for the piece's face tips
-  /// (vtouch::DistributedFaceTips::answer: per cluster, kNotAFaceTip, kNoTipBeyond or the band
-  /// of the true tip beyond the face), called once per run (a collective: also when the field
-  /// reaches no voxel of the piece), after the clusters, before the traces. TraceStage then
-  /// orders a face tip by that band and traces one with no tip beyond as a loop's second side.
+  /// (vtouch::DistributedFaceTips::answer: per cluster, kNotAFaceTip, kNoTipBeyond or the rank
+  /// key, DistributedTipOrder, of the true tip beyond the face, or a true tip's own), once per
+  /// run (a collective: also when the field reaches no voxel of the piece), after the clusters,
+  /// before the traces. TraceStage orders the tips by it, a loop's second side last.
   /// Empty (default): face tips keep their own band (the single run has none).
   std::function<std::vector<std::int64_t>(const skeleton::SkeletonTracer&)> faceTipBands;
 };

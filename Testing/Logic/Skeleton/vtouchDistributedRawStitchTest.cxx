@@ -197,5 +197,40 @@ TEST(DistributedRawStitch,
   }
 }
 
+// Tips of one band across pieces (h17j). On the 256^3 raw phantom without a seed (the recipe of
+// measure_cs_topology.py --raw-phantom 256: 60 segments, 4 clutter objects, seed 3, noise 10) on
+// 2 pieces (1 1 2, the executive's split), the two arms of the junction near the automatic root
+// (67, 121, 154) end at tips of the same band, 193: (104, 142, 5) and (93, 211, 111). The single
+// run traces (104, 142, 5) first (the smaller cluster key) and its trace runs on through the
+// junction to the root; rank 1 holds (93, 211, 111) and the face tip where the other arm enters
+// (94, 114, 96), answered with band 193: tied in band, the true tip went first (its own band is
+// the higher), so its path ran on to the root and the arms' roles swapped (161 / 157 points for
+// 164 / 154, 0.281 voxel apart before the refinement; through the pvserver 16 points fewer after
+// it, 1.638 voxel). The face tips' answers now carry the tip's place in the single run's order
+// (DistributedTipOrder), and the stitched skeleton is the single run's.
+TEST(DistributedRawStitch, TipsOfOneBandAcrossTwoPiecesAreTracedInTheSingleRunsOrder)
+{
+  itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(1); // ITK on each rank's own thread
+  const test::FloatVolume phantom = test::rawPhantomVolume(256, 3, 60, 10.0);
+  ASSERT_TRUE(phantom.ok) << phantom.error;
+  const VesselCandidateRegion::Settings s; // automatic, tubes only, no seed
+  const VesselCandidateRegion::Result single = VesselCandidateRegion::extract(phantom.view(), s);
+  ASSERT_TRUE(single.ok) << single.message;
+  std::vector<float> region(phantom.voxels.size(), 0.0F);
+  single.mask.forEach([&region](std::uint64_t lin) { region[lin] = 1000.0F; });
+  const int margin = 31; // LargestVesselRadius 4 voxels, as measured through the pvserver
+  const test::DistributedStitchRun run =
+    test::runDistributedStitch(region, phantom.dims, 500.0, { 1, 1, 2 }, margin);
+  EXPECT_EQ(run.root, (std::array<std::int64_t, 3>{ 67, 121, 154 }));
+  EXPECT_EQ(pathLengths(run.stitched), pathLengths(run.single));
+  const double from = test::farthestPoint_mm(run.stitched, run.single);
+  const double of = test::farthestPoint_mm(run.single, run.stitched);
+  std::printf(
+    "256^3, 2 pieces: farthest point from the single run %.3f voxel, of it %.3f\n", from, of);
+  EXPECT_LE(from, 0.1);
+  EXPECT_LE(of, 0.1);
+  EXPECT_EQ(run.report.cutEndsUnmatched, 0);
+}
+
 } // namespace
 } // namespace vtouch
