@@ -66,19 +66,30 @@ Vec3 directionAt(const SkeletonFragment& f, std::size_t i)
   return length > 0.0 ? d * (1.0 / length) : Vec3{};
 }
 
+/// Whether point i of `f` is an attached end of it (a branch's first point, on its parent's).
+bool isAttachedEnd(const SkeletonFragment& f, std::size_t i)
+{
+  return (i == 0 && f.head.kind == FragmentEnd::Kind::Attached) ||
+         (i + 1 == f.points.size() && f.tail.kind == FragmentEnd::Kind::Attached);
+}
+
 /// The nearest point of each other piece's fragments to point i of fragment g, on their
 /// segments (the coder's points may lie several voxels apart with DownsampleFactor: the lateral
 /// offset is what tells copies apart), within `reach_mm` and running alike; nearest first.
+/// A point within `coincident_mm` is a copy whatever the directions (see
+/// SkeletonOverlapResolver::coincidentPoint_mm), unless either is an attached end.
 std::vector<Copy> nearestCopies(const std::vector<SkeletonFragment>& fragments,
   const FragmentPointGrid& grid,
   std::size_t g,
   std::size_t i,
   double reach_mm,
-  double minimumCosine)
+  double minimumCosine,
+  double coincident_mm)
 {
   const SkeletonFragment& f = fragments[g];
   const Vec3& p = f.points[i].position_World_mm;
   const Vec3 dp = directionAt(f, i);
+  const bool pointAttached = isAttachedEnd(f, i);
   std::vector<Copy> best;
   grid.visitNear(p,
     [&](const FragmentPointGrid::Item& item)
@@ -105,10 +116,6 @@ std::vector<Copy> nearestCopies(const std::vector<SkeletonFragment>& fragments,
         const Vec3 dq = length2 > 0.0 ? ab * (1.0 / std::sqrt(length2)) : Vec3{};
         const bool directed = dp.norm() > 0.0 && dq.norm() > 0.0;
         const double alignment = directed ? std::abs(dp.dot(dq)) : 1.0;
-        if (alignment < minimumCosine)
-        {
-          continue; // another vessel passing near (a branch at its junction)
-        }
         Copy c;
         c.fragment = static_cast<long>(item.fragment);
         c.piece = other.piece;
@@ -116,11 +123,12 @@ std::vector<Copy> nearestCopies(const std::vector<SkeletonFragment>& fragments,
         c.position = q;
         c.distance = d;
         c.alignment = alignment;
-        const long nearestPoint = std::lround(c.at);
-        c.attachedEnd =
-          (nearestPoint == 0 && other.head.kind == FragmentEnd::Kind::Attached) ||
-          (nearestPoint == static_cast<long>(m) - 1 &&
-            other.tail.kind == FragmentEnd::Kind::Attached);
+        c.attachedEnd = isAttachedEnd(other, static_cast<std::size_t>(std::lround(c.at)));
+        const bool samePoint = d <= coincident_mm && !pointAttached && !c.attachedEnd;
+        if (alignment < minimumCosine && !samePoint)
+        {
+          continue; // another vessel passing near (a branch at its junction)
+        }
         const auto same = std::find_if(
           best.begin(), best.end(), [&](const Copy& x) { return x.piece == other.piece; });
         if (same == best.end())
@@ -379,7 +387,8 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
   {
     for (std::size_t i = 0; i < fragments[g].points.size(); ++i)
     {
-      copies[g].push_back(nearestCopies(fragments, grid, g, i, copyReach_mm, minimumCopyCosine));
+      copies[g].push_back(
+        nearestCopies(fragments, grid, g, i, copyReach_mm, minimumCopyCosine, coincidentPoint_mm));
     }
   }
   // keep[g][i]: 1 kept, 0 dropped for a copy (toward[g][i] its fragment). Where one other piece

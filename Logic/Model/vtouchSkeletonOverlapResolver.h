@@ -68,6 +68,15 @@ public:
   double copyReach_mm = 1.5;
   /// Smallest |cos| between two copies' directions (~35 degrees).
   double minimumCopyCosine = 0.82;
+  /// Two pieces' points closer than this, mm, are one point of one vessel, a copy whatever the
+  /// directions (the stitcher sets kCoincidentPointVoxels voxels). Project rule (h17c): both
+  /// pieces coded the same centre; the direction test tells a vessel passing near from the
+  /// vessel itself, but at a fragment's clipped end the direction is one-sided, and on a zigzag
+  /// of the coder's centres it is far off the other piece's central difference at the same
+  /// point (the real CTA seeded on 4 ranks: |cos| 0.714; the point, kept by neither piece,
+  /// was lost). Not at an attached end: a branch's first point lies on its parent's point, and
+  /// there the directions tell the two vessels apart. Default 1e-3.
+  double coincidentPoint_mm = 1e-3;
 
   /// The kept runs of `fragments`; `duplicatesRemoved` counts the points dropped as copies.
   std::vector<OverlapRun> resolve(const std::vector<SkeletonFragment>& fragments,

@@ -386,6 +386,7 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
   {
     SkeletonOverlapResolver resolver(ownership, frame);
     resolver.copyReach_mm = copyReach_mm;
+    resolver.coincidentPoint_mm = coincidentPoint_mm;
     runs = resolver.resolve(sent, report.duplicatesRemoved);
   }
   else

@@ -76,8 +76,9 @@ public:
   /// A sent point farther than this from the stitched skeleton is a dropped point. Default 1.5.
   double coverageReach_mm = 1.5;
   /// Where two joined runs meet, end points closer than this are one (no zero-length segment;
-  /// the coder's own consecutive points are left as they are). Default 1e-3 (the filter:
-  /// kCoincidentPointVoxels voxels).
+  /// the coder's own consecutive points are left as they are); two pieces' points closer than
+  /// this are copies whatever their directions (SkeletonOverlapResolver::coincidentPoint_mm).
+  /// Default 1e-3 (the filter: kCoincidentPointVoxels voxels).
   double coincidentPoint_mm = 1e-3;
 
   QSkeleton stitch(const std::vector<SkeletonFragment>& fragments, StitchReport& report) const;
