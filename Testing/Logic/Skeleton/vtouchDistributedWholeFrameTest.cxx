@@ -110,6 +110,35 @@ TEST(DistributedWholeFrame, DISABLED_AnySplit)
   }
   const test::DistributedStitchRun run = runY(counts, frame);
   expectTheSingleRunsPointsExactly(run);
+  // Where they depart: each run's points without an exact twin in the other (path, index).
+  const auto departing = [](const QSkeleton& a, const QSkeleton& b, const char* name)
+  {
+    for (const SkeletonPath& p : a.paths)
+    {
+      for (std::size_t i = 0; i < p.points.size(); ++i)
+      {
+        QSkeleton one;
+        one.paths.push_back(SkeletonPath{});
+        one.paths[0].points.push_back(p.points[i]);
+        const double d = test::farthestPoint_mm(one, b);
+        if (d > 0.0)
+        {
+          const Vec3& q = p.points[i].position_World_mm;
+          std::printf("%s path %d of %zu point %zu (%.3f, %.3f, %.3f) mm: %.3g mm\n",
+            name,
+            p.id,
+            p.points.size(),
+            i,
+            q.x,
+            q.y,
+            q.z,
+            d);
+        }
+      }
+    }
+  };
+  departing(run.single, run.stitched, "single");
+  departing(run.stitched, run.single, "stitched");
 }
 } // namespace
 } // namespace vtouch
