@@ -40,7 +40,16 @@ FragmentEnd pathEnd(const QSkeleton& skeleton, const PathEnd& end)
   const Junction& j = skeleton.junctions[static_cast<std::size_t>(end.junction)];
   const SkeletonPath& parent = skeleton.paths[static_cast<std::size_t>(j.parentPath)];
   out.kind = FragmentEnd::Kind::Attached;
-  out.position_World_mm = parent.points[static_cast<std::size_t>(j.parentPoint)].position_World_mm;
+  const auto at = static_cast<std::size_t>(j.parentPoint);
+  out.position_World_mm = parent.points[at].position_World_mm;
+  if (at > 0)
+  {
+    out.parentBefore_World_mm = parent.points[at - 1].position_World_mm;
+  }
+  if (at + 1 < parent.points.size())
+  {
+    out.parentAfter_World_mm = parent.points[at + 1].position_World_mm;
+  }
   return out;
 }
 

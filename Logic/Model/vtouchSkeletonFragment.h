@@ -5,6 +5,7 @@
 
 #include "vtouchQSkeleton.h"
 
+#include <limits>
 #include <vector>
 
 namespace vtouch
@@ -26,6 +27,14 @@ struct FragmentEnd
   /// point beyond (both pieces compute nearly the same pair, so their cut ends meet there).
   Vec3 position_World_mm;
   int neighbourPiece = -1; ///< Cut: the piece owning the first point beyond, else -1
+  /// Attached: the positions of the parent point's neighbours along its path in the coder's
+  /// skeleton (the points before and after it; NaN where the parent point is the path's end).
+  /// Consecutive voxels of one cluster share its centre and radius, so the parent point can
+  /// tie bit for bit with a neighbour; its neighbours tell which of the tied points the coder
+  /// hung the child on (SkeletonStitcher, nearestPoint's last tie rule).
+  Vec3 parentBefore_World_mm{ kNoNeighbour, kNoNeighbour, kNoNeighbour };
+  Vec3 parentAfter_World_mm{ kNoNeighbour, kNoNeighbour, kNoNeighbour };
+  static constexpr double kNoNeighbour = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The owned run of points of one path in one piece, head -> tail as in that path.

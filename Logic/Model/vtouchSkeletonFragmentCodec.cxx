@@ -7,8 +7,9 @@ namespace vtouch
 
 namespace
 {
-constexpr std::size_t kHeader = 12; // piece, count, head 5, tail 5
-constexpr std::size_t kPoint = 10;  // position 3, tangent 3, curvature, torsion, radius, label
+constexpr std::size_t kEnd = 11; // kind, position 3, neighbour piece, parent's neighbours 6
+constexpr std::size_t kHeader = 2 + 2 * kEnd; // piece, count, head, tail
+constexpr std::size_t kPoint = 10; // position 3, tangent 3, curvature, torsion, radius, label
 
 void putEnd(std::vector<double>& d, const FragmentEnd& e)
 {
@@ -17,6 +18,10 @@ void putEnd(std::vector<double>& d, const FragmentEnd& e)
   d.push_back(e.position_World_mm.y);
   d.push_back(e.position_World_mm.z);
   d.push_back(static_cast<double>(e.neighbourPiece));
+  for (const Vec3& v : { e.parentBefore_World_mm, e.parentAfter_World_mm })
+  {
+    d.insert(d.end(), { v.x, v.y, v.z });
+  }
 }
 
 bool getEnd(const double* d, FragmentEnd& e)
@@ -29,6 +34,8 @@ bool getEnd(const double* d, FragmentEnd& e)
   e.kind = static_cast<FragmentEnd::Kind>(static_cast<int>(kind));
   e.position_World_mm = { d[1], d[2], d[3] };
   e.neighbourPiece = static_cast<int>(d[4]);
+  e.parentBefore_World_mm = { d[5], d[6], d[7] };
+  e.parentAfter_World_mm = { d[8], d[9], d[10] };
   return e.position_World_mm.isFinite() || e.kind == FragmentEnd::Kind::Free;
 }
 } // namespace
@@ -94,7 +101,7 @@ bool SkeletonFragmentCodec::decode(const double* data,
       error = "bad or truncated point count";
       return false;
     }
-    if (!getEnd(data + at + 2, fragment.head) || !getEnd(data + at + 7, fragment.tail))
+    if (!getEnd(data + at + 2, fragment.head) || !getEnd(data + at + 2 + kEnd, fragment.tail))
     {
       error = "bad fragment end";
       return false;

@@ -213,18 +213,46 @@ ChainEnds walkChain(const std::vector<SkeletonFragment>& f,
   }
 }
 
-/// The nearest point of `s` to `p` but path `self`'s points within 2 of index `selfPoint`.
+/// The same position bit for bit, or both absent (NaN: the parent point is a path's end).
+bool samePosition(const Vec3& a, const Vec3& b)
+{
+  return a.isFinite() ? (b.isFinite() && a.x == b.x && a.y == b.y && a.z == b.z) : !b.isFinite();
+}
+
+/// True when point `i` of `path` has the neighbours of `end`'s parent point, either order.
+bool sameNeighbours(const SkeletonPath& path, std::size_t i, const FragmentEnd& end)
+{
+  const Vec3 none{
+    FragmentEnd::kNoNeighbour, FragmentEnd::kNoNeighbour, FragmentEnd::kNoNeighbour
+  };
+  const Vec3 before = i > 0 ? path.points[i - 1].position_World_mm : none;
+  const Vec3 after = i + 1 < path.points.size() ? path.points[i + 1].position_World_mm : none;
+  const Vec3& b = end.parentBefore_World_mm;
+  const Vec3& a = end.parentAfter_World_mm;
+  return (samePosition(before, b) && samePosition(after, a)) ||
+         (samePosition(before, a) && samePosition(after, b));
+}
+
+/// The nearest point of `s` to `end`'s parent position but path `self`'s points within 2 of
+/// index `selfPoint`.
 /// Among points at the same distance (the coder writes a path's last point twice where a child
 /// hangs on it), a path's end wins (a project rule): the single run hangs the child on the end,
 /// and a child hung one point before it would leave that end a free vessel end. Then the point
 /// whose radius is nearest `radius_mm`, the child end's (a project rule): the child's end is a
 /// copy of its parent point, radius included, while consecutive voxels of one cluster share its
 /// centre (the distributed run stitches the coder's centres, whole paths smoothed afterwards).
+/// Then, among points tied in all three (consecutive voxels of one cluster share its centre and
+/// its radius: the same doubles, since every rank computes them in the whole volume's frame),
+/// the one whose neighbours along its path are the parent point's neighbours in the coder's
+/// skeleton (`end`'s, either order: a fragment may be stitched reversed), a project rule: the
+/// coder hung the child on one voxel of the cluster, and the smoothing's corners
+/// (smoothSkeletonPaths) sit on that point, so the single run's choice matters (the shared CTA
+/// thresholded: the child one point off moved 15 points by up to 0.078 mm, h17f).
 /// Never another path's attached end (`ends`): it is a copy of its own parent point, where two
 /// branches leave one point the other branch's head lies on the parent point too.
 bool nearestPoint(const QSkeleton& s,
   const std::vector<ChainEnds>& ends,
-  const Vec3& p,
+  const FragmentEnd& end,
   double radius_mm,
   int self,
   long selfPoint,
@@ -232,9 +260,11 @@ bool nearestPoint(const QSkeleton& s,
   int& point,
   double& d)
 {
+  const Vec3& p = end.position_World_mm;
   d = std::numeric_limits<double>::infinity();
   bool atEnd = false;
   double radiusOff = std::numeric_limits<double>::infinity();
+  bool neighboursMatch = false;
   for (const SkeletonPath& candidate : s.paths)
   {
     for (std::size_t i = 0; i < candidate.points.size(); ++i)
@@ -251,15 +281,19 @@ bool nearestPoint(const QSkeleton& s,
         continue;
       }
       const double di = (candidate.points[i].position_World_mm - p).norm();
-      const bool end = head || tail;
+      const bool isEnd = head || tail;
       const double off = std::abs(candidate.points[i].radius_mm - radius_mm);
-      if (di < d || (di == d && end && !atEnd) || (di == d && end == atEnd && off < radiusOff))
+      const bool matches = sameNeighbours(candidate, i, end);
+      if (di < d || (di == d && isEnd && !atEnd) ||
+          (di == d && isEnd == atEnd && off < radiusOff) ||
+          (di == d && isEnd == atEnd && off == radiusOff && matches && !neighboursMatch))
       {
         d = di;
         path = candidate.id;
         point = static_cast<int>(i);
-        atEnd = end;
+        atEnd = isEnd;
         radiusOff = off;
+        neighboursMatch = matches;
       }
     }
   }
@@ -516,15 +550,7 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
       int parentPath = -1, parentPoint = -1;
       double d = 0.0;
       const bool found =
-        nearestPoint(s,
-          chainEnds,
-          end.position_World_mm,
-          q.radius_mm,
-          path.id,
-          index,
-          parentPath,
-          parentPoint,
-          d);
+        nearestPoint(s, chainEnds, end, q.radius_mm, path.id, index, parentPath, parentPoint, d);
       if (!found || d > std::max(joinTolerance_mm, 0.5 * q.radius_mm))
       {
         ++report.attachmentsUnresolved;

@@ -167,7 +167,7 @@ void ClusterStage::build()
                  x[1] == grid.ny - 1 || x[2] == grid.nz - 1;
     for (int a = 0; a < 3; ++a)
     {
-      c.sum[a] += static_cast<double>(x[a]) * grid.sp[a];
+      c.sum[a] += static_cast<double>(x[a] + grid.first_Whole[a]) * grid.sp[a]; // centerOf's
       c.indexSum[a] += x[a];
     }
     // Ties of BS go to the lower SS code, then to the smaller index, whatever the visiting order.

@@ -197,9 +197,12 @@ double EndStage::maskValueAt(const Point& p_mm) const
   double w[3];
   for (int a = 0; a < 3; ++a)
   {
+    // Whole-lattice mm to the whole index and its weights (the single run's numbers on every
+    // rank, VoxelGrid::first_Whole), then the mask's index.
     const double x = p_mm[a] / grid.sp[a];
-    base[a] = static_cast<std::int64_t>(std::floor(x));
-    w[a] = x - static_cast<double>(base[a]);
+    const auto baseWhole = static_cast<std::int64_t>(std::floor(x));
+    w[a] = x - static_cast<double>(baseWhole);
+    base[a] = baseWhole - grid.first_Whole[a];
     if (base[a] < 0 || base[a] + 1 >= size[a])
     {
       return -1.0;

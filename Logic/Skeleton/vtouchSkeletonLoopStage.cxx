@@ -414,7 +414,9 @@ void LoopStage::joinFacingEnds()
       std::int64_t index[3];
       for (int a = 0; a < 3; ++a)
       {
-        index[a] = std::llround((end.centre[a] + t * (c[a] - end.centre[a])) / grid.sp[a]);
+        // Whole-lattice mm rounded to the whole index (the single run's), then the mask's.
+        index[a] = std::llround((end.centre[a] + t * (c[a] - end.centre[a])) / grid.sp[a]) -
+                   grid.first_Whole[a];
       }
       inside = index[0] >= 0 && index[0] < grid.nx && index[1] >= 0 && index[1] < grid.ny &&
                index[2] >= 0 && index[2] < grid.nz &&

@@ -7,7 +7,8 @@ namespace skeleton
 
 VoxelGrid::VoxelGrid(const SparseVesselMask& m,
   const std::array<double, 3>& spacing_mm,
-  double clusterWidth_mm)
+  double clusterWidth_mm,
+  const std::array<std::int64_t, 3>& pieceFirst_Whole)
   : mask(m)
 {
   nx = m.dims()[0];
@@ -20,6 +21,7 @@ VoxelGrid::VoxelGrid(const SparseVesselMask& m,
   for (int a = 0; a < 3; ++a)
   {
     sp[a] = spacing_mm[a];
+    first_Whole[a] = pieceFirst_Whole[a];
   }
   minSpacing = std::min({ sp[0], sp[1], sp[2] });
   maxSpacing = std::max({ sp[0], sp[1], sp[2] });

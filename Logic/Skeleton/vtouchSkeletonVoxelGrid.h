@@ -38,10 +38,13 @@ struct VoxelGrid
   static constexpr int kHalf = 13; // the first 13 offsets precede the voxel: each pair visited once
 
   /// `spacing_mm`: voxel size per axis (> 0); `clusterWidth_mm`: thickness of the SS bands, 0 =
-  /// the largest spacing.
+  /// the largest spacing; `first_Whole`: the whole volume's index of the mask's voxel (0, 0, 0)
+  /// (a distributed run's piece, PieceInWhole; 0 for the single run): positions are whole-lattice
+  /// mm, (whole index) * spacing, the single run's numbers on every rank.
   VoxelGrid(const SparseVesselMask& m,
     const std::array<double, 3>& spacing_mm,
-    double clusterWidth_mm);
+    double clusterWidth_mm,
+    const std::array<std::int64_t, 3>& first_Whole = { 0, 0, 0 });
 
   const SparseVesselMask& mask;
   std::int64_t nx, ny, nz;
@@ -55,8 +58,9 @@ struct VoxelGrid
   std::int64_t offLin[26];
   double offLen[26]; // mm
   float offLenF[26];
-  double offMm[26][3];       // offsets in mm
-  std::int64_t rowOffset[9]; // linear offset of the neighbour rows (dj, dk), di = 0
+  double offMm[26][3];         // offsets in mm
+  std::int64_t first_Whole[3]; // the whole index of voxel (0, 0, 0): positions are whole-lattice mm
+  std::int64_t rowOffset[9];   // linear offset of the neighbour rows (dj, dk), di = 0
 
   /// a / d for d >= 1, with `inverse` = 1.0 / d (exact: the estimate is off by at most one).
   static std::uint32_t divide(std::uint32_t a, std::uint32_t d, double inverse)
@@ -147,11 +151,15 @@ struct VoxelGrid
     return { c[0], c[1], c[2] };
   }
 
+  /// The centre of voxel `lin`, whole-lattice mm: (whole index) * spacing, as the single run
+  /// computes it (the integer sum is exact, so the product is the single run's double).
   Point_mm centerOf(std::uint32_t lin) const
   {
     std::int64_t c[3];
     coords(lin, c);
-    return { c[0] * sp[0], c[1] * sp[1], c[2] * sp[2] };
+    return { static_cast<double>(c[0] + first_Whole[0]) * sp[0],
+      static_cast<double>(c[1] + first_Whole[1]) * sp[1],
+      static_cast<double>(c[2] + first_Whole[2]) * sp[2] };
   }
 
   /// The linear index of voxel (i, j, k), which must lie in the volume.
@@ -160,14 +168,16 @@ struct VoxelGrid
     return static_cast<std::uint64_t>(i + nx * (j + ny * k));
   }
 
-  /// The voxel whose centre is nearest `p_mm`, clamped to the volume.
+  /// The voxel whose centre is nearest `p_mm` (whole-lattice mm), clamped to the mask's box.
+  /// The rounding is the single run's (on the whole index), then the index is the mask's.
   std::uint64_t nearestVoxel(const Point_mm& p_mm) const
   {
     const std::int64_t size[3] = { nx, ny, nz };
     std::int64_t v[3];
     for (int a = 0; a < 3; ++a)
     {
-      v[a] = std::clamp<std::int64_t>(std::llround(p_mm[a] / sp[a]), 0, size[a] - 1);
+      v[a] =
+        std::clamp<std::int64_t>(std::llround(p_mm[a] / sp[a]) - first_Whole[a], 0, size[a] - 1);
     }
     return linOf(v[0], v[1], v[2]);
   }

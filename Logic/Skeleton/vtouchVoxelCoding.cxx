@@ -32,7 +32,7 @@ struct VoxelCoder::Impl
     const std::function<bool(double)>& progress)
     : par(parameters)
     , meter(progress)
-    , grid(mask, parameters.spacing_mm, parameters.clusterWidth_mm)
+    , grid(mask, parameters.spacing_mm, parameters.clusterWidth_mm, parameters.first_Whole)
     , seedCode(grid, meter, codes, parameters.clusterWidth_mm)
     , clusterStage(grid, meter, codes, graph)
     , tracer(grid, meter, codes, graph, draft)

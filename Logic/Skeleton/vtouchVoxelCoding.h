@@ -32,6 +32,10 @@ class VoxelCodingAborted : public Cancelled
 struct VoxelCodingParameters
 {
   std::array<double, 3> spacing_mm{ 1.0, 1.0, 1.0 }; ///< voxel size per axis, > 0
+  /// The whole volume's index of the mask's voxel (0, 0, 0) (PieceInWhole::first_Whole; 0 for
+  /// the single run): the centres (RawSkeletonPath::center_mm) are whole-lattice mm, (whole
+  /// index) * spacing, computed as the single run computes them (skeleton::VoxelGrid).
+  std::array<std::int64_t, 3> first_Whole{ 0, 0, 0 };
   /// A side branch shorter than this many local radii (of the vessel it joins) is a spur and is
   /// pruned. Loop closures shorter than this are treated as noise of one front. Dimensionless.
   double minimumBranchLength = 2.5;
@@ -59,7 +63,7 @@ struct VoxelCodingParameters
 struct RawSkeletonPath
 {
   std::vector<std::array<std::int64_t, 3>> voxels; ///< 26-connected voxel chain, head -> tail
-  std::vector<std::array<double, 3>> center_mm;    ///< center-adjusted position per voxel
+  std::vector<std::array<double, 3>> center_mm;    ///< centre per voxel, whole-lattice mm
   std::vector<double> radius_mm;                   ///< local radius from the BS code
   int headJunction = -1;                           ///< index into RawSkeleton::junctions
   int tailJunction = -1;

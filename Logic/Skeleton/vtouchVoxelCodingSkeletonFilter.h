@@ -12,6 +12,7 @@
 // exception: it needs dense float images over the volume.
 #pragma once
 
+#include "vtouchPieceInWhole.h"
 #include "vtouchQSkeletonObject.h"
 #include "vtouchVoxelCoding.h"
 
@@ -157,6 +158,18 @@ public:
     this->m_GlobalFaceTips = std::move(function);
     this->Modified();
   }
+  /// A distributed run's piece (the input, its index 0 at its first voxel): where it lies in the
+  /// whole volume. Coded at full resolution, the centres and the world positions are then
+  /// computed in the whole volume's frame, the single run's operations on the single run's
+  /// numbers (PieceInWhole; issue 19 item 2). Departure: coded on blocks (an effective factor
+  /// > 1) they stay in the piece's frame (the blocks are the piece's, not the whole volume's, so
+  /// the run departs from the single run anyway). Not called (default): the single run.
+  void SetPieceInWhole(const PieceInWhole& frame)
+  {
+    this->m_PieceInWhole = frame;
+    this->m_HasPieceInWhole = true;
+    this->Modified();
+  }
   /// Number of vessel voxels of the last run (input resolution), and the bytes used by the masks
   /// and the codes.
   itkGetConstMacro(NumberOfVesselVoxels, unsigned long long);
@@ -217,6 +230,10 @@ private:
   std::shared_ptr<const SparseVesselMask> m_VesselMask;
   GlobalSeedCodeFunction m_GlobalSeedCode;
   GlobalFaceTipsFunction m_GlobalFaceTips;
+  PieceInWhole m_PieceInWhole;
+  bool m_HasPieceInWhole{ false };
+  /// The last Code() computed its centres in the whole volume's frame (m_PieceInWhole).
+  bool m_CodedInWholeFrame{ false };
   /// The mask's share of the run's progress (the vesselness, when on, takes half the run).
   float m_MaskProgressShare{ 0.05F };
 };

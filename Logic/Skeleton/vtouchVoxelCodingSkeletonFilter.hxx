@@ -328,7 +328,15 @@ template<typename TInputImage>
 QSkeleton VoxelCodingSkeletonFilter<TInputImage>::ToWorld(const RawSkeleton& raw) const
 {
   const InputImageType* input = this->GetInput();
-  const auto& origin = input->GetOrigin();
+  // A piece coded in the whole volume's frame: its centres are whole-lattice mm, so the world
+  // position is the whole origin plus them, the single run's sum (SetPieceInWhole).
+  std::array<double, 3> origin{
+    input->GetOrigin()[0], input->GetOrigin()[1], input->GetOrigin()[2]
+  };
+  if (this->m_CodedInWholeFrame)
+  {
+    origin = this->m_PieceInWhole.wholeOrigin_World_mm;
+  }
   const auto& dir = input->GetDirection();
   double maxSpacing = 0.0;
   for (unsigned int a = 0; a < 3; ++a)
@@ -383,6 +391,12 @@ RawSkeleton VoxelCodingSkeletonFilter<TInputImage>::Code(const SparseVesselMask&
   const auto& spacing = this->GetInput()->GetSpacing();
   const double f = static_cast<double>(factor);
   par.spacing_mm = { f * spacing[0], f * spacing[1], f * spacing[2] };
+  // Blocks are the piece's, not the whole volume's: coded on blocks the piece keeps its frame.
+  this->m_CodedInWholeFrame = this->m_HasPieceInWhole && factor == 1;
+  if (this->m_CodedInWholeFrame)
+  {
+    par.first_Whole = this->m_PieceInWhole.first_Whole;
+  }
   par.minimumBranchLength = this->m_MinimumBranchLength;
   // The component size is counted in input voxels.
   par.minimumComponentSize =

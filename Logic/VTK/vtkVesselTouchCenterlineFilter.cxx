@@ -151,7 +151,8 @@ void vtkVesselTouchCenterlineFilter::Complain(const std::string& message)
 
 int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVector,
   vtkImageData* input,
-  vtkPolyData* output)
+  vtkPolyData* output,
+  const vtouch::PieceInWhole* pieceInWhole)
 {
   this->DownsampleFactorUsed = 0;
   this->LastRunKey.clear();
@@ -323,7 +324,9 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     global ? [global](vtouch::SparseVesselMask& m) { return global->code(m); }
            : std::function<std::vector<float>(vtouch::SparseVesselMask&)>(),
     global ? [global](const vtouch::skeleton::SkeletonTracer& t) { return global->faceTips(t); }
-           : std::function<std::vector<std::int64_t>(const vtouch::skeleton::SkeletonTracer&)>() };
+           : std::function<std::vector<std::int64_t>(const vtouch::skeleton::SkeletonTracer&)>(),
+    // A piece's positions in the whole volume's frame, the single run's (PieceInWhole).
+    pieceInWhole ? std::optional<vtouch::PieceInWhole>(*pieceInWhole) : std::nullopt };
   try
   {
     vtouch::CoderRun coded = vtouch::skeletonizeVolume(input, scalars, s);
@@ -449,10 +452,12 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   vtkPolyData* output)
 {
   vtouch::DistributedRequest::Hooks hooks;
-  hooks.extractPiece = [this, inputVector](vtkImageData* piece, vtkPolyData* pieceOutput)
+  hooks.extractPiece = [this, inputVector](vtkImageData* piece,
+                         const vtouch::PieceInWhole& frame,
+                         vtkPolyData* pieceOutput)
   {
     this->QuietErrors = true;
-    this->ExtractVolume(inputVector, piece, pieceOutput);
+    this->ExtractVolume(inputVector, piece, pieceOutput, &frame);
     this->QuietErrors = false;
   };
   hooks.lastRun = [this](double range[2], std::string& message)
@@ -671,7 +676,9 @@ void vtkVesselTouchCenterlineFilter::AddRestOfRegion(vtkInformationVector** inpu
   vtkNew<vtkPolyData> other;
   this->QuietErrors = true;
   this->DistributedRegion = &rest;
-  this->ExtractVolume(inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), other);
+  const vtouch::PieceInWhole frame = vtouch::DistributedCenterline::pieceInWhole(input);
+  this->ExtractVolume(
+    inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), other, &frame);
   this->DistributedRegion = nullptr;
   this->QuietErrors = false;
   this->ExtractionMessage = message; // the seed's component's run speaks for the piece

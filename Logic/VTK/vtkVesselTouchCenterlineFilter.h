@@ -35,6 +35,7 @@ namespace vtouch
 {
 struct CandidateRegionOutcome; // the distributed raw seeded mode's region (RequestDistributed)
 class DistributedGlobalField;  // the distributed modes' global SS field (RequestDistributed)
+struct PieceInWhole;           // a distributed run's piece in the whole volume (ExtractVolume)
 class QSkeleton;
 }
 #endif
@@ -192,8 +193,12 @@ private:
   void operator=(const vtkVesselTouchCenterlineFilter&) = delete;
 
   /// The single-process extraction of `input` into `output` (the whole run of a one-process
-  /// pipeline, one piece's run of a distributed one).
-  int ExtractVolume(vtkInformationVector** inputVector, vtkImageData* input, vtkPolyData* output);
+  /// pipeline, one piece's run of a distributed one: `pieceInWhole` is then where the piece lies
+  /// in the whole volume, and the coder computes its positions in the whole volume's frame).
+  int ExtractVolume(vtkInformationVector** inputVector,
+    vtkImageData* input,
+    vtkPolyData* output,
+    const vtouch::PieceInWhole* pieceInWhole = nullptr);
   /// One rank's part of the distributed extraction: its piece, clipped, gathered and stitched on
   /// the first rank (the others output nothing: the delivery's ReductionFilter appends).
   int RequestDistributed(vtkInformationVector** inputVector, vtkPolyData* output);

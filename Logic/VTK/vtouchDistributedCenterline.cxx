@@ -215,6 +215,19 @@ vtkSmartPointer<vtkImageData> DistributedCenterline::pieceFromIndexZero(vtkImage
   return local;
 }
 
+PieceInWhole DistributedCenterline::pieceInWhole(vtkImageData* piece)
+{
+  PieceInWhole frame;
+  int extent[6];
+  piece->GetExtent(extent);
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    frame.first_Whole[a] = extent[2 * a];
+  }
+  piece->GetOrigin(frame.wholeOrigin_World_mm.data());
+  return frame;
+}
+
 namespace
 {
 void addIntValue(vtkFieldData* fd, const char* name, int value)

@@ -3,6 +3,7 @@
 // the filter's private helper, built into the VesselTouch::Logic module.
 #pragma once
 
+#include "vtouchPieceInWhole.h"
 #include "vtouchPieceOwnership.h"
 #include "vtouchQSkeleton.h"
 #include "vtouchSkeletonStitcher.h"
@@ -58,6 +59,10 @@ public:
   /// origin is the world position of its first voxel: the coder indexes voxels from 0 (the
   /// point and field data arrays are shared, not copied).
   static vtkSmartPointer<vtkImageData> pieceFromIndexZero(vtkImageData* piece);
+  /// Where `piece` (an extent that need not start at 0, the whole volume's origin) lies in the
+  /// whole volume: its extent's start and the whole origin. The coder of pieceFromIndexZero's
+  /// image computes its positions in this frame, the single run's (PieceInWhole).
+  static PieceInWhole pieceInWhole(vtkImageData* piece);
 
   struct Result
   {

@@ -83,7 +83,9 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   {
     report.extractStart_Epoch_s = epochSeconds();
     const auto extractStart = std::chrono::steady_clock::now();
-    hooks.extractPiece(DistributedCenterline::pieceFromIndexZero(input), own);
+    hooks.extractPiece(DistributedCenterline::pieceFromIndexZero(input),
+      DistributedCenterline::pieceInWhole(input),
+      own);
     report.extractSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - extractStart).count();
     // Two of the coder's sequential stages (vtouch::VoxelCodingSkeletonFilter): the threshold

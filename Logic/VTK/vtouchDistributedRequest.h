@@ -37,8 +37,10 @@ public:
   /// What the filter gives the distributed run: its own single-process run and its settings.
   struct Hooks
   {
-    /// Codes `piece` (an image indexed from 0) into `output`, errors deferred (not reported).
-    std::function<void(vtkImageData* piece, vtkPolyData* output)> extractPiece;
+    /// Codes `piece` (an image indexed from 0) into `output`, errors deferred (not reported),
+    /// its positions in the whole volume's frame `frame` (the single run's, PieceInWhole).
+    std::function<void(vtkImageData* piece, const PieceInWhole& frame, vtkPolyData* output)>
+      extractPiece;
     /// The intensity range the last extractPiece used, and its message ("" when it worked).
     std::function<void(double range[2], std::string& message)> lastRun;
     /// Writes a skeleton as the filter's output polydata (points, lines, arrays).

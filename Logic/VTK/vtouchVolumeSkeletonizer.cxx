@@ -89,6 +89,10 @@ QSkeleton skeletonize(vtkImageData* image,
   {
     filter->SetGlobalSeedCode(s.globalSeedCode);
   }
+  if (s.pieceInWhole)
+  {
+    filter->SetPieceInWhole(*s.pieceInWhole);
+  }
   if (s.globalFaceTips)
   {
     filter->SetGlobalFaceTips(s.globalFaceTips);

@@ -4,12 +4,14 @@
 // float copy of the volume).
 #pragma once
 
+#include "vtouchPieceInWhole.h"
 #include "vtouchProgress.h"
 #include "vtouchQSkeleton.h"
 
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +50,10 @@ struct CoderSettings
   /// With it, the face tips' single-run answers (VoxelCodingSkeletonFilter::SetGlobalFaceTips),
   /// or empty.
   std::function<std::vector<std::int64_t>(const skeleton::SkeletonTracer&)> globalFaceTips;
+  /// A distributed run's piece: where it lies in the whole volume (the coder then computes its
+  /// positions in the whole volume's frame, VoxelCodingSkeletonFilter::SetPieceInWhole), or
+  /// empty (the single run).
+  std::optional<PieceInWhole> pieceInWhole;
 };
 
 /// What one run of the coder gives.

@@ -203,6 +203,42 @@ TEST(SkeletonStitcher, BranchesOnOneOfTwoPointsWithOneCentreHangOnTheirOwnParent
   EXPECT_EQ(cycleRank(s), 0);
 }
 
+TEST(SkeletonStitcher, ABranchOnTheSecondOfTwoIdenticalPointsHangsThereAsCoded)
+{
+  // Consecutive voxels of one cluster share its centre and may share its radius: the trunk's
+  // points 5 and 6 are the same doubles, (6, 10, 5) with radius 2, and the coder hung the
+  // branch on point 6 (the shared CTA thresholded, issue 19 item 2, h17f: the distributed run
+  // hung it on the first found, one point off, and the smoothing's corner with it moved 15
+  // points by up to 0.078 mm). Distance, end and radius tie: the parent point's neighbours
+  // along the trunk (the clipper sends them with the attached end) tell which one it was.
+  QSkeleton whole;
+  std::vector<SkeletonPoint> trunk, branch;
+  for (int i = 0; i < 19; ++i)
+  {
+    const double x = i < 6 ? 1.0 + i : (i == 6 ? 6.0 : 0.0 + i); // points 5 and 6 share (6, 10)
+    trunk.push_back(point(x, 10.0, 5.0, 2.0));
+  }
+  for (int i = 0; i < 7; ++i)
+  {
+    branch.push_back(point(6.0 - 0.5 * i, 10.0 + 0.8 * i, 5.0, i == 0 ? 2.0 : 1.0));
+  }
+  whole.paths.push_back(path(0, trunk));
+  whole.paths.push_back(path(1, branch));
+  attach(whole, 1, Junction::End::Head, 0, 6);
+  ASSERT_EQ(whole.validate(), "");
+  StitchReport report;
+  const QSkeleton s = clipAndStitch({ whole, whole }, twoPieces(), report);
+  EXPECT_EQ(s.validate(), "");
+  ASSERT_EQ(s.paths.size(), 2u);
+  EXPECT_EQ(report.attachmentsResolved, 1);
+  const int trunkId = s.paths[0].points.size() == 19u ? s.paths[0].id : s.paths[1].id;
+  const int branchId = trunkId == s.paths[0].id ? s.paths[1].id : s.paths[0].id;
+  const bool reversed =
+    s.paths[static_cast<std::size_t>(trunkId)].points.front().position_World_mm.x > 10.0;
+  EXPECT_EQ(parentOf(s, branchId), std::make_pair(trunkId, reversed ? 12 : 6));
+  EXPECT_EQ(freeEnds(s), 3);
+}
+
 /// A ring of radius 7 around (10, 10, 5), from angle a0 to a1 (radians), 1 point per ~0.7 mm.
 std::vector<SkeletonPoint> arc(double a0, double a1)
 {

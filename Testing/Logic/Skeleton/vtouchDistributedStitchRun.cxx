@@ -29,21 +29,27 @@ using Filter = VoxelCodingSkeletonFilter<FloatImage>;
 using Index = std::array<std::int64_t, 3>;
 
 /// The voxels of `box` of the whole volume `voxels` (x fastest), as an image whose first voxel
-/// lies at the box's world position (1 mm voxels at 0: the piece coded from its first voxel).
+/// lies at the box's world position in `frame` (axis-aligned), computed as
+/// DistributedCenterline::pieceFromIndexZero does (vtkImageData::TransformIndexToPhysicalPoint:
+/// origin + index * spacing): the piece coded from its first voxel.
 FloatImage::Pointer imageOf(const std::vector<float>& voxels,
   const Index& dims,
-  const VoxelBox& box)
+  const VoxelBox& box,
+  const IndexFrame& frame)
 {
   auto image = FloatImage::New();
   FloatImage::SizeType size;
   FloatImage::PointType origin;
+  FloatImage::SpacingType spacing;
   for (unsigned a = 0; a < 3; ++a)
   {
     size[a] = static_cast<itk::SizeValueType>(box.hi[a] - box.lo[a] + 1);
-    origin[a] = static_cast<double>(box.lo[a]);
+    origin[a] = frame.origin_mm[a] + static_cast<double>(box.lo[a]) * frame.spacing_mm[a];
+    spacing[a] = frame.spacing_mm[a];
   }
   image->SetRegions(FloatImage::RegionType(size));
   image->SetOrigin(origin);
+  image->SetSpacing(spacing);
   image->Allocate();
   float* out = image->GetBufferPointer();
   for (std::int64_t k = box.lo[2]; k <= box.hi[2]; ++k)
@@ -111,7 +117,7 @@ DistributedStitchRun runDistributedStitch(const PhantomSpec& spec,
   const Index dims{ spec.dimensions[0], spec.dimensions[1], spec.dimensions[2] };
   std::vector<float> voxels(static_cast<std::size_t>(dims[0] * dims[1] * dims[2]));
   phantom.fill(voxels.data());
-  return runDistributedStitch(voxels, dims, lower, counts, ghost_voxels, seeded, seed);
+  return runDistributedStitch(voxels, dims, lower, counts, ghost_voxels, seeded, seed, false);
 }
 
 DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
@@ -121,20 +127,21 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   int ghost_voxels,
   bool seeded,
   const Index& seed,
-  bool clearOuterLayer)
+  bool clearOuterLayer,
+  const IndexFrame& frame)
 {
   DistributedStitchRun run;
   run.dims = dims;
   // The single run: the whole volume.
   const VoxelBox whole{ { 0, 0, 0 }, { dims[0] - 1, dims[1] - 1, dims[2] - 1 } };
-  FloatImage::Pointer wholeImage = imageOf(voxels, dims, whole);
+  FloatImage::Pointer wholeImage = imageOf(voxels, dims, whole, frame);
   Filter::Pointer single = coder(wholeImage, lower);
   if (seeded)
   {
     Filter::PointType p;
     for (unsigned a = 0; a < 3; ++a)
     {
-      p[a] = static_cast<double>(seed[a]);
+      p[a] = frame.origin_mm[a] + static_cast<double>(seed[a]) * frame.spacing_mm[a];
     }
     single->SetSeedPoint(p);
   }
@@ -171,8 +178,10 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   run.pieces = onEveryRank<QSkeleton>(layout,
     [&](const PieceLayout& l, RankCollectives& c, QSkeleton& out)
     {
-      FloatImage::Pointer piece = imageOf(voxels, dims, l.mine());
+      FloatImage::Pointer piece = imageOf(voxels, dims, l.mine(), frame);
       Filter::Pointer filter = coder(piece, lower);
+      // Where the piece lies in the whole volume (DistributedCenterline::pieceInWhole).
+      filter->SetPieceInWhole({ l.mine().lo, frame.origin_mm });
       // The centres kept: the whole paths are smoothed after the stitch, as the filter's first
       // rank does (smoothSkeletonPaths).
       filter->SetSmoothingWindow(kPositionsKeptWindow_mm);
@@ -188,7 +197,7 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
           {
             vtouch::clearOuterLayer(mask, l); // as SeededDistributedCoding (the raw seeded mode)
           }
-          DistributedSeedCode code(l, mask, { 1.0, 1.0, 1.0 });
+          DistributedSeedCode code(l, mask, frame.spacing_mm);
           code.run(c, roots);
           return code.ss();
         });
@@ -204,10 +213,11 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
         }
       }
     });
-  // Clip and stitch as DistributedCenterline::gatherAndStitch (1 mm voxels).
+  // Clip and stitch as DistributedCenterline::gatherAndStitch (DistributedRequest: the join
+  // tolerance is two of the largest spacing, the reaches in the largest spacing).
   const VoxelExtent6 wholeExtent{ 0, int(dims[0] - 1), 0, int(dims[1] - 1), 0, int(dims[2] - 1) };
   run.ownership = PieceOwnership(executiveSplit(dims, counts), wholeExtent);
-  const IndexFrame frame;
+  const double voxel_mm = *std::max_element(frame.spacing_mm.begin(), frame.spacing_mm.end());
   std::vector<SkeletonFragment> all;
   for (std::size_t r = 0; r < run.pieces.size(); ++r)
   {
@@ -217,15 +227,15 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
     all.insert(all.end(), f.begin(), f.end());
   }
   SkeletonStitcher stitcher;
-  stitcher.joinTolerance_mm = 2.0;
+  stitcher.joinTolerance_mm = 2.0 * voxel_mm;
   stitcher.ownership = run.ownership;
   stitcher.frame = frame;
-  stitcher.copyReach_mm = kCopyReachVoxels;
-  stitcher.coverageReach_mm = kCopyReachVoxels;
-  stitcher.coincidentPoint_mm = kCoincidentPointVoxels;
+  stitcher.copyReach_mm = kCopyReachVoxels * voxel_mm;
+  stitcher.coverageReach_mm = kCopyReachVoxels * voxel_mm;
+  stitcher.coincidentPoint_mm = kCoincidentPointVoxels * voxel_mm;
   run.stitchedCentres = stitcher.stitch(all, run.report);
   run.stitched = run.stitchedCentres;
-  smoothSkeletonPaths(run.stitched, 1.0, smoothingWindow_mm()); // the coder's (coder())
+  smoothSkeletonPaths(run.stitched, voxel_mm, smoothingWindow_mm()); // the coder's (coder())
   return run;
 }
 

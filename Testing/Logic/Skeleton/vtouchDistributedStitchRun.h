@@ -11,6 +11,7 @@
 #pragma once
 
 #include "vtouchPhantomSpec.h"
+#include "vtouchPieceOwnership.h"
 #include "vtouchQSkeleton.h"
 #include "vtouchRoundsOutcome.h"
 #include "vtouchSkeletonStitcher.h"
@@ -53,7 +54,11 @@ DistributedStitchRun runDistributedStitch(const PhantomSpec& spec,
 /// The same on any volume: `voxels` (x fastest) of `dims` voxels of 1 mm at 0. `clearOuterLayer`:
 /// each rank's mask loses its outermost layer on shared faces before coding and the face tips
 /// are at the evaluable box's faces, as the filter's raw seeded mode codes its region
-/// (SeededDistributedCoding::Settings::clearOuterLayer).
+/// (SeededDistributedCoding::Settings::clearOuterLayer). `frame`: the volume's origin and
+/// spacing (axis-aligned; default 1 mm voxels at 0); each rank's piece is an image whose origin
+/// is its first voxel's world position and is told where it lies in the whole volume
+/// (VoxelCodingSkeletonFilter::SetPieceInWhole), as the filter's ranks are
+/// (DistributedCenterline::pieceFromIndexZero, pieceInWhole).
 DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   const std::array<std::int64_t, 3>& dims,
   double lower,
@@ -61,7 +66,8 @@ DistributedStitchRun runDistributedStitch(const std::vector<float>& voxels,
   int ghost_voxels,
   bool seeded = false,
   const std::array<std::int64_t, 3>& seed = {},
-  bool clearOuterLayer = false);
+  bool clearOuterLayer = false,
+  const IndexFrame& frame = IndexFrame{});
 
 /// The largest distance from a point of `a` to the nearest point of `b`, mm; only points of `a`
 /// farther than `awayFrom_mm` from `avoid` count (a root's neighbourhood; `awayFrom_mm` 0: all).
