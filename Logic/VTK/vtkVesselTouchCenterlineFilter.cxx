@@ -6,6 +6,7 @@
 #include "vtouchDistributedRawRegion.h"
 #include "vtouchDistributedGlobalField.h"
 #include "vtouchDistributedWholePathRefinement.h"
+#include "vtouchRemoteCancelListener.h"
 #include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchQSkeletonToPolyData.h"
 #include "vtouchRangeForeground.h"
@@ -55,6 +56,8 @@ vtkVesselTouchCenterlineFilter::vtkVesselTouchCenterlineFilter()
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }
+
+vtkVesselTouchCenterlineFilter::~vtkVesselTouchCenterlineFilter() = default;
 
 int vtkVesselTouchCenterlineFilter::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -124,6 +127,57 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
 
 int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // The client's Cancel on a pvserver (issue 19 item 1, issue 16 item 6): the first rank's
+  // socket is open for this run only, closed however the run ends.
+  struct RemoteCancelScope
+  {
+    vtkVesselTouchCenterlineFilter* filter;
+    ~RemoteCancelScope() { this->filter->CloseRemoteCancel(); }
+  } scope{ this };
+  this->OpenRemoteCancel();
+  return this->ExecuteRequest(inputVector, outputVector);
+}
+
+void vtkVesselTouchCenterlineFilter::OpenRemoteCancel()
+{
+  this->RemoteCancel.reset();
+  this->RemoteCancelPort = 0;
+  vtkMultiProcessController* global = vtkMultiProcessController::GetGlobalController();
+  const bool firstRank = !global || global->GetLocalProcessId() == 0;
+  if (this->RemoteCancelToken.empty() || !firstRank)
+  {
+    return;
+  }
+  this->RemoteCancel = std::make_unique<vtouch::RemoteCancelListener>(this->RemoteCancelToken);
+  if (!this->RemoteCancel->listening())
+  {
+    vtkWarningMacro(<< "VesselCenterline: this run cannot be cancelled from the client ("
+                    << this->RemoteCancel->error() << ").");
+    this->RemoteCancel.reset();
+    return;
+  }
+  this->RemoteCancelPort = this->RemoteCancel->port();
+  // ParaView sends the first rank's progress, with its text, to the client during the update
+  // (vtkPVProgressHandler): the client reads the port there (vesseltouch.remote_cancel). Every
+  // progress report of the run carries it, so a report ParaView skips loses nothing.
+  const std::string text =
+    "VesselCenterline: cancel port " + std::to_string(this->RemoteCancelPort);
+  this->SetProgressText(text.c_str());
+  this->UpdateProgress(0.0);
+}
+
+void vtkVesselTouchCenterlineFilter::CloseRemoteCancel()
+{
+  if (this->RemoteCancel)
+  {
+    this->RemoteCancel.reset(); // joins its thread, closes the socket
+    this->SetProgressText(nullptr);
+  }
+}
+
+int vtkVesselTouchCenterlineFilter::ExecuteRequest(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
@@ -397,6 +451,13 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   {
     return cancelled(); // the cancel flag or AbortExecute stopped the coder
   }
+  catch (const vtouch::Cancelled&)
+  {
+    // The ranks agreed to cancel in an exchange of the coder's hooks (the global field's
+    // rounds, CancellableCollectives): this rank goes on to the run's next cancel point like a
+    // rank that stopped for its own cancel, so no rank waits for it (issue 19 item 1).
+    return cancelled();
+  }
   catch (const itk::ExceptionObject& e)
   {
     fail(std::string("VesselCenterline: ") + e.GetDescription());
@@ -466,6 +527,11 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   { return this->GetGhostMarginVoxels(spacing); };
   hooks.automaticIntensityRange = this->AutomaticIntensityRange;
   hooks.timeline = this->DistributedTimeline.take();
+  // A cancel (the first rank's remote cancel, AbortExecute) at every exchange of the ranks,
+  // taken by every rank at the same one (vtouch::CancellableCollectives, issue 19 item 1).
+  const vtouch::CancellableCollectives::CancelCheck cancelRequested = [this]
+  { return this->CancelRequested(); };
+  hooks.cancelRequested = cancelRequested;
   // The global SS field (issue 19 item 2): every rank codes its piece with the single run's SS
   // field, computed across the ranks (vtouch::DistributedGlobalField, the coder's hook), instead
   // of from roots of its own: from the seed in the seeded modes, from the single run's automatic
@@ -494,7 +560,8 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     parameters.minimumComponentSize =
       static_cast<std::uint64_t>(std::max(1, this->MinimumComponentSize));
     parameters.clusterWidth_mm = 0.0;
-    field = vtouch::DistributedGlobalField::automaticRoot(controller(), input, whole, parameters);
+    field = vtouch::DistributedGlobalField::automaticRoot(
+      controller(), input, whole, parameters, cancelRequested);
     this->DistributedField = field.get();
   };
   // The raw modes (automatic range): the range and the region with the other ranks (collective),
@@ -515,7 +582,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
       region = vtouch::DistributedRawRegion::run(
-        controller(), input, scalars, whole, request, regionReport);
+        controller(), input, scalars, whole, request, regionReport, cancelRequested);
       this->DistributedRegion = &region;
       if (!this->UseSeedPoint)
       {
@@ -543,8 +610,8 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
           seed_Whole[a] = region.seedIndex[a] + e[2 * a] - whole[2 * a];
         }
       }
-      field =
-        vtouch::DistributedGlobalField::seeded(controller(), input, whole, here, seed_Whole, true);
+      field = vtouch::DistributedGlobalField::seeded(
+        controller(), input, whole, here, seed_Whole, true, cancelRequested);
       this->DistributedField = field.get();
     };
   }
@@ -556,7 +623,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
         input ? vtouch::DistributedGlobalField::seedVoxel_Whole(input, this->SeedPoint, whole)
               : std::array<std::int64_t, 3>{ -1, -1, -1 };
       field = vtouch::DistributedGlobalField::seeded(
-        controller(), input, whole, input != nullptr, seed_Whole, false);
+        controller(), input, whole, input != nullptr, seed_Whole, false, cancelRequested);
       this->DistributedField = field.get();
     };
   }
@@ -639,11 +706,38 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
       // A two-valued volume without a seed is a mask the single run does not refine.
       return vtouch::DistributedWholePathRefinement::run(
-        controller(), input, scalars, whole, region.binary ? nullptr : stitched, settings, report);
+        controller(),
+        input,
+        scalars,
+        whole,
+        region.binary ? nullptr : stitched,
+        settings,
+        report,
+        cancelRequested);
     };
   }
-  const vtouch::DistributedRequest::Outcome outcome =
-    vtouch::DistributedRequest::run(inputVector, output, hooks);
+  vtouch::DistributedRequest::Outcome outcome;
+  try
+  {
+    outcome = vtouch::DistributedRequest::run(inputVector, output, hooks);
+  }
+  catch (const vtouch::Cancelled&)
+  {
+    // Every rank threw at the same exchange (CancellableCollectives): an empty output and
+    // "Cancelled." on every rank, as a cancelled single run.
+    this->DistributedRegion = nullptr;
+    this->DistributedField = nullptr;
+    this->QuietErrors = false; // a piece's run may have been left by the exception
+    output->Initialize();
+    this->ExtractionMessage = vtouch::cancelledMessage();
+    this->LastRunCancelled = true;
+    vtouch::addRangeFieldData(output->GetFieldData(),
+      this->IntensityRangeUsed[0],
+      this->IntensityRangeUsed[1],
+      this->AutomaticIntensityRange,
+      this->ExtractionMessage);
+    return 1;
+  }
   this->DistributedRegion = nullptr;
   this->DistributedField = nullptr;
   this->ExtractionMessage = outcome.message;
@@ -685,7 +779,8 @@ void vtkVesselTouchCenterlineFilter::AddRestOfRegion(vtkInformationVector** inpu
 
 bool vtkVesselTouchCenterlineFilter::CancelRequested()
 {
-  return vtouch::cancelRequested(this->CancelFlag, this);
+  return vtouch::cancelRequested(this->CancelFlag, this) ||
+         (this->RemoteCancel && this->RemoteCancel->cancelled().load());
 }
 
 std::string vtkVesselTouchCenterlineFilter::RunKey(vtkImageData* input, vtkDataArray* scalars) const
