@@ -529,8 +529,18 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   hooks.timeline = this->DistributedTimeline.take();
   // A cancel (the first rank's remote cancel, AbortExecute) at every exchange of the ranks,
   // taken by every rank at the same one (vtouch::CancellableCollectives, issue 19 item 1).
+  // On the first rank with a cancel socket, each exchange also reports the progress again: the
+  // ranks' rounds report none of their own, and ParaView sends the first rank's progress (with
+  // the port in its text) at most once a second and only when reported, so without it the
+  // client would learn the port only when the coder first reports (seconds to minutes later).
   const vtouch::CancellableCollectives::CancelCheck cancelRequested = [this]
-  { return this->CancelRequested(); };
+  {
+    if (this->RemoteCancel)
+    {
+      this->UpdateProgress(this->GetProgress());
+    }
+    return this->CancelRequested();
+  };
   hooks.cancelRequested = cancelRequested;
   // The global SS field (issue 19 item 2): every rank codes its piece with the single run's SS
   // field, computed across the ranks (vtouch::DistributedGlobalField, the coder's hook), instead
