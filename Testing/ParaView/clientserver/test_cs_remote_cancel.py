@@ -12,7 +12,8 @@ the vessel mask, coded at full resolution with DistributedExtraction on (minutes
   "Cancelled." (the message the built-in Cancel gives), the server acknowledged the token;
 - cancelled from another Python thread (waiting on an event the progress observer sets), the
   same;
-- a wrong token is refused (the run goes on);
+- a wrong token is refused ("wrong token") and the run goes on: the right token at the next
+  progress event cancels it;
 - then a second extraction (the scaling benchmark's tree, 64^3, thresholded) succeeds on the
   same server (paths, no message): no rank was left waiting in an exchange; and the server exits
   when the client disconnects (run_connected).
@@ -23,6 +24,7 @@ time from the cancel's send to the update's return (not asserted). Exits non-zer
 import argparse
 import os
 import shutil
+import socket
 import sys
 import tempfile
 import threading
@@ -86,7 +88,7 @@ def extract(volume, canceller_factory, label, **settings):
 LONG = dict(AutomaticIntensityRange=0, LowerThreshold=LONG_RUN_LOWER, DownsampleFactor=1)
 
 
-def body(folder, size, cancel_at):
+def body(folder, size, cancel_at, cancel_after_s):
     from vesseltouch.remote_cancel import RemoteCancel
     volume = simple.OpenDataFile(os.path.join(folder, "angio%d.nrrd" % size))
     volume.UpdatePipeline()
@@ -109,6 +111,7 @@ def body(folder, size, cancel_at):
 
         def cancel_when_running():
             if port_seen.wait(WATCHDOG_S):
+                time.sleep(cancel_after_s)  # a measurement's delay (0 in the ctest)
                 canceller.cancel()
         threading.Thread(target=cancel_when_running, daemon=True).start()
         return canceller
@@ -118,22 +121,39 @@ def body(folder, size, cancel_at):
     check(message_of(data) == "Cancelled.", "the message is 'Cancelled.' (%r)" % message_of(data))
     check(data.GetNumberOfLines() == 0, "the output is empty")
 
-    # 3. A wrong token is refused, and the server still answers: a small tree extracts.
+    # 3. A wrong token is refused and changes nothing; the right one then cancels.
+    wrong = {}
+
+    def wrong_then_right(centerline):
+        holder = []
+
+        def on_progress(fraction, text):
+            c = holder[0]
+            if c.port is None:
+                return False
+            if "answer" not in wrong:
+                with socket.create_connection((c.host, c.port), 5.0) as s:
+                    s.settimeout(5.0)
+                    s.sendall(b"not-the-token\n")
+                    wrong["answer"] = s.makefile().readline().strip()
+                return False
+            return True  # the next progress event: the run went on; now the right token
+        holder.append(RemoteCancel(centerline, on_progress=on_progress))
+        return holder[0]
+    data, c, _ = extract(volume, wrong_then_right, "a wrong token, then the right one", **LONG)
+    check(wrong.get("answer") == "wrong token", "a wrong token is refused (%r)" % wrong)
+    check(c.cancelled() and message_of(data) == "Cancelled.",
+          "the run went on after the wrong token and the right one cancelled it (%r, %r)"
+          % (c.answer, message_of(data)))
+
+    # 4. The server still answers: a small tree extracts (paths, no message).
     small = os.path.join(folder, "tree64.nrrd")
     write_tree_nrrd(small, (64, 64, 64))
     volume_small = simple.OpenDataFile(small)
-
-    def wrong_token(centerline):
-        canceller = RemoteCancel(centerline)
-        canceller.token = "not-the-token"
-        canceller._wanted.set()  # sent at the first progress event that names the port
-        return canceller
-    data, c, _ = extract(volume_small, wrong_token, "a wrong token, small tree",
+    data, c, _ = extract(volume_small, RemoteCancel, "no cancel, small tree",
                          AutomaticIntensityRange=0, LowerThreshold=550)
-    check(c.port is None or c.answer == "wrong token",
-          "a wrong token is refused (answer %r)" % c.answer)
     check(data.GetNumberOfLines() > 0 and message_of(data) == "",
-          "the second extraction on the same server succeeds (%d lines, %r)"
+          "the next extraction on the same server succeeds (%d lines, %r)"
           % (data.GetNumberOfLines(), message_of(data)))
     simple.Delete(volume_small)
     simple.Delete(volume)
@@ -146,15 +166,19 @@ def main():
     # The callback's cancel: at the first progress event past this fraction (0: as soon as the
     # run reports any; 0.3: in the coder's local coding, Docs/CLIENT-SERVER.md's measurements).
     parser.add_argument("--cancel-at", type=float, default=0.0)
+    # The thread's cancel: this long after the port is known (measurements of a cancel in the
+    # coder's local stages; 0 in the ctest).
+    parser.add_argument("--cancel-after-s", type=float, default=0.0)
+    parser.add_argument("--watchdog-s", type=float, default=WATCHDOG_S)
     args = parser.parse_args()
     folder = tempfile.mkdtemp(prefix="vtouch-cs-cancel-")
     write_phantom(os.path.join(folder, "angio%d.nrrd" % args.size), args.size)
 
     def run(server):
-        watchdog = threading.Timer(WATCHDOG_S, server.kill)
+        watchdog = threading.Timer(args.watchdog_s, server.kill)
         watchdog.start()
         try:
-            body(folder, args.size, args.cancel_at)
+            body(folder, args.size, args.cancel_at, args.cancel_after_s)
         finally:
             watchdog.cancel()
     try:
