@@ -6,6 +6,7 @@
 #include "vtouchDistributedRawRegion.h"
 #include "vtouchDistributedGlobalField.h"
 #include "vtouchDistributedWholePathRefinement.h"
+#include "vtouchControllerCollectives.h"
 #include "vtouchRemoteCancelListener.h"
 #include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchQSkeletonToPolyData.h"
@@ -146,19 +147,24 @@ void vtkVesselTouchCenterlineFilter::OpenRemoteCancel()
   this->RemoteCancelPort = 0;
   vtkMultiProcessController* global = vtkMultiProcessController::GetGlobalController();
   const bool firstRank = !global || global->GetLocalProcessId() == 0;
-  if (this->RemoteCancelToken.empty() || !firstRank)
+  if (this->RemoteCancelToken.empty())
   {
     return;
   }
   this->RemoteCancel = std::make_unique<vtouch::RemoteCancelListener>(this->RemoteCancelToken);
   if (!this->RemoteCancel->listening())
   {
-    vtkWarningMacro(<< "VesselCenterline: this run cannot be cancelled from the client ("
+    vtkWarningMacro(<< "VesselCenterline: this run cannot be cancelled from the client"
+                    << (firstRank ? "" : " before this rank's next exchange") << " ("
                     << this->RemoteCancel->error() << ").");
     this->RemoteCancel.reset();
     return;
   }
   this->RemoteCancelPort = this->RemoteCancel->port();
+  if (!firstRank)
+  {
+    return; // told by the first rank's socket (ShareRemoteCancelPorts)
+  }
   // ParaView sends the first rank's progress, with its text, to the client during the update
   // (vtkPVProgressHandler): the client reads the port there (vesseltouch.remote_cancel). Every
   // progress report of the run carries it, so a report ParaView skips loses nothing.
@@ -166,6 +172,39 @@ void vtkVesselTouchCenterlineFilter::OpenRemoteCancel()
     "VesselCenterline: cancel port " + std::to_string(this->RemoteCancelPort);
   this->SetProgressText(text.c_str());
   this->UpdateProgress(0.0);
+}
+
+void vtkVesselTouchCenterlineFilter::ShareRemoteCancelPorts()
+{
+  vtkMultiProcessController* global = vtkMultiProcessController::GetGlobalController();
+  vtouch::ControllerCollectives c(vtouch::DistributedCenterline::controllerFor(
+    global->GetLocalProcessId(), global->GetNumberOfProcesses()));
+  // Each rank's port (0: none) and host name, as numbers.
+  std::vector<double> mine{ static_cast<double>(this->RemoteCancelPort) };
+  for (const char ch : vtouch::RemoteCancelListener::hostName())
+  {
+    mine.push_back(static_cast<double>(static_cast<unsigned char>(ch)));
+  }
+  const std::vector<std::vector<double>> all = c.allGather(mine);
+  if (c.rank() != 0 || !this->RemoteCancel)
+  {
+    return;
+  }
+  std::vector<std::pair<std::string, int>> peers;
+  for (std::size_t r = 1; r < all.size(); ++r)
+  {
+    if (all[r].empty() || all[r][0] <= 0.0)
+    {
+      continue;
+    }
+    std::string host;
+    for (std::size_t i = 1; i < all[r].size(); ++i)
+    {
+      host.push_back(static_cast<char>(static_cast<unsigned char>(all[r][i])));
+    }
+    peers.emplace_back(host, static_cast<int>(all[r][0]));
+  }
+  this->RemoteCancel->forwardTo(std::move(peers));
 }
 
 void vtkVesselTouchCenterlineFilter::CloseRemoteCancel()
@@ -542,6 +581,10 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     return this->CancelRequested();
   };
   hooks.cancelRequested = cancelRequested;
+  if (!this->RemoteCancelToken.empty())
+  {
+    this->ShareRemoteCancelPorts(); // collective: the token is on every rank's filter
+  }
   // The global SS field (issue 19 item 2): every rank codes its piece with the single run's SS
   // field, computed across the ranks (vtouch::DistributedGlobalField, the coder's hook), instead
   // of from roots of its own: from the seed in the seeded modes, from the single run's automatic

@@ -163,9 +163,9 @@ public:
   /// ExtractionMessage "Cancelled.".
   vtkGetMacro(LastRunCancelled, bool);
   /// A cancel from the client on a pvserver (issue 19 item 1, issue 16 item 6): when not empty,
-  /// the first rank opens a socket for the run (vtouch::RemoteCancelListener), names its port in
-  /// the progress text ("VesselCenterline: cancel port <port>") and stops the run on every rank
-  /// when a connection sends this token (one line). The client chooses the token (a random
+  /// every rank opens a socket for the run (vtouch::RemoteCancelListener), the first names its
+  /// port in the progress text ("VesselCenterline: cancel port <port>") and, when a connection
+  /// sends this token (one line), tells the others' sockets; every rank stops. The client chooses the token (a random
   /// string per run: vesseltouch.remote_cancel). Default empty: no socket.
   void SetRemoteCancelToken(const char* token)
   {
@@ -238,6 +238,9 @@ private:
   void OpenRemoteCancel();
   /// Closes it and clears the progress text.
   void CloseRemoteCancel();
+  /// Collective (distributed runs with a token): the ranks' cancel sockets to the first rank,
+  /// which tells them when it hears the client (RemoteCancelListener::forwardTo).
+  void ShareRemoteCancelPorts();
   /// Returns the precomputed output in `output` when `key` is its key (and forgets it).
   bool UsePrecomputed(const std::string& key, vtkPolyData* output);
 

@@ -2,6 +2,7 @@
 #include "vtouchRemoteCancelListener.h"
 
 #include <arpa/inet.h>
+#include <netdb.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -93,6 +94,61 @@ void RemoteCancelListener::serve()
     const char* answer = token ? "cancelling\n" : "wrong token\n";
     (void)!::send(connection, answer, std::strlen(answer), MSG_NOSIGNAL);
     ::close(connection);
+    if (token)
+    {
+      this->forward();
+    }
+  }
+}
+
+void RemoteCancelListener::forwardTo(std::vector<std::pair<std::string, int>> peers)
+{
+  {
+    std::lock_guard<std::mutex> lock(this->PeersMutex);
+    this->Peers = std::move(peers);
+  }
+  if (this->Cancelled.load())
+  {
+    this->forward();
+  }
+}
+
+std::string RemoteCancelListener::hostName()
+{
+  char name[256] = {};
+  return ::gethostname(name, sizeof(name) - 1) == 0 ? std::string(name) : std::string("localhost");
+}
+
+void RemoteCancelListener::forward()
+{
+  std::vector<std::pair<std::string, int>> peers;
+  {
+    std::lock_guard<std::mutex> lock(this->PeersMutex);
+    peers.swap(this->Peers); // each peer is told once
+  }
+  const std::string line = this->Token + "\n";
+  for (const auto& [host, port] : peers)
+  {
+    addrinfo hints{};
+    hints.ai_family = AF_INET;
+    hints.ai_socktype = SOCK_STREAM;
+    addrinfo* found = nullptr;
+    if (::getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found) != 0)
+    {
+      continue; // that rank stops at its next exchange
+    }
+    const int s = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    timeval timeout{ kReadTimeout_s, 0 };
+    if (s >= 0)
+    {
+      ::setsockopt(s, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof(timeout)); // bounds connect too
+      if (::connect(s, found->ai_addr, found->ai_addrlen) == 0)
+      {
+        (void)!::send(s, line.data(), line.size(), MSG_NOSIGNAL);
+      }
+      ::close(s);
+    }
+    ::freeaddrinfo(found);
   }
 }
 

@@ -14,8 +14,11 @@
 #pragma once
 
 #include <atomic>
+#include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 namespace vtouch
 {
@@ -38,10 +41,20 @@ public:
   /// Set (once, never cleared) when a connection sent the token.
   const std::atomic<bool>& cancelled() const { return this->Cancelled; }
 
+  /// The other ranks' listeners (host, port), which this one tells when it hears the token, so
+  /// that every rank stops at its next local check point instead of its next exchange (project
+  /// rule: a rank's local stages can run tens of seconds between exchanges). Sent at once if the
+  /// token came before. A peer that cannot be reached (1 s) stops at its next exchange.
+  void forwardTo(std::vector<std::pair<std::string, int>> peers);
+  /// This machine's host name (what the other ranks connect to).
+  static std::string hostName();
+
 private:
   void serve();
   /// Reads one line of a connection (1 s time-out); true when it is the token.
   bool readToken(int connection) const;
+  /// Sends the token to every peer not told yet.
+  void forward();
 
   std::string Token;
   int Socket = -1;
@@ -49,6 +62,8 @@ private:
   std::string Error;
   std::atomic<bool> Cancelled{ false };
   std::atomic<bool> Stop{ false };
+  std::mutex PeersMutex;
+  std::vector<std::pair<std::string, int>> Peers;
   std::thread Thread;
 };
 
