@@ -13,7 +13,7 @@ namespace
 {
 /// Strips the status word each rank appended; true when any rank's word asks to cancel. A rank
 /// that appended none is not running the same exchange (a programming error, reported).
-template <typename T>
+template<typename T>
 bool stripCancelWords(std::vector<std::vector<T>>& all)
 {
   bool any = false;

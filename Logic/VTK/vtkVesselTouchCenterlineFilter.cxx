@@ -758,8 +758,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
       // A two-valued volume without a seed is a mask the single run does not refine.
-      return vtouch::DistributedWholePathRefinement::run(
-        controller(),
+      return vtouch::DistributedWholePathRefinement::run(controller(),
         input,
         scalars,
         whole,

@@ -165,8 +165,8 @@ public:
   /// A cancel from the client on a pvserver (issue 19 item 1, issue 16 item 6): when not empty,
   /// every rank opens a socket for the run (vtouch::RemoteCancelListener), the first names its
   /// port in the progress text ("VesselCenterline: cancel port <port>") and, when a connection
-  /// sends this token (one line), tells the others' sockets; every rank stops. The client chooses the token (a random
-  /// string per run: vesseltouch.remote_cancel). Default empty: no socket.
+  /// sends this token (one line), tells the others' sockets; every rank stops. The client chooses
+  /// the token (a random string per proxy: vesseltouch.remote_cancel). Default empty: no socket.
   void SetRemoteCancelToken(const char* token)
   {
     const std::string t = token ? token : "";

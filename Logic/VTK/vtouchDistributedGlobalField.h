@@ -99,7 +99,7 @@ private:
   DistributedGlobalField(vtkMultiProcessController* controller,
     const CancellableCollectives::CancelCheck& cancelRequested);
 
-  std::unique_ptr<RankCollectives> Exchanges; ///< over the controller
+  std::unique_ptr<RankCollectives> Exchanges;   ///< over the controller
   std::unique_ptr<RankCollectives> Collectives; ///< Exchanges, cancellable
   std::unique_ptr<Source> Field;
   std::unique_ptr<DistributedFaceTips> FaceTips;

@@ -1,7 +1,8 @@
-// The side channel of a Cancel on a pvserver (issue 19 item 1, issue 16 item 6): while the first
-// rank runs VesselCenterline, the client's connection to the server is busy with the update (the
+// The side channel of a Cancel on a pvserver (issue 19 item 1, issue 16 item 6): while the ranks
+// run VesselCenterline, the client's connection to the server is busy with the update (the
 // client waits for its reply and can send nothing the server would read before the run ends), so
-// the first rank listens for the cancel on a socket of its own. Project rule (Docs/CLIENT-SERVER.md,
+// each rank listens for the cancel on a socket of its own; the client tells the first rank's,
+// which tells the others' (forwardTo). Project rule (Docs/CLIENT-SERVER.md,
 // "Cancel on a pvserver"): a TCP socket on every interface of the server machine (the pvserver
 // itself listens on all of them by default), on a port the system chooses (none to configure, no
 // clash between runs), announced to the client in the filter's progress text, which ParaView

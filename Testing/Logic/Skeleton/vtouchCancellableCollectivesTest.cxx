@@ -160,8 +160,8 @@ TEST(CancellableCollectives, PassesValuesUnchangedAndStaysCancelledOnceAgreed)
       EXPECT_EQ(d[1], (std::vector<double>{ 2.5, 2.5 }));
       const auto i = c.allGather(std::vector<std::int64_t>{ rank });
       EXPECT_EQ(i[1], std::vector<std::int64_t>{ 1 });
-      EXPECT_EQ(c.gather({ 7 }, 0)[0], rank == 0 ? std::vector<std::int64_t>{ 7 }
-                                                 : std::vector<std::int64_t>{});
+      EXPECT_EQ(c.gather({ 7 }, 0)[0],
+        rank == 0 ? std::vector<std::int64_t>{ 7 } : std::vector<std::int64_t>{});
       c.agree();
       EXPECT_FALSE(c.cancelled());
       // The second rank asks between two long local stages: agree() stops both.
