@@ -1,13 +1,14 @@
 """Cancel a VesselCenterline run on a pvserver from the client (issue 19 item 1, issue 16 item 6).
 
 While the server runs the filter, the client's connection is busy with the update: the client
-waits for its reply and nothing it sends there is read before the run ends. So the server's first
-rank listens on a socket of its own for the run (vtouch::RemoteCancelListener) and names its port
-in the filter's progress text, which ParaView sends to the client during the update; this module
+waits for its reply and nothing it sends there is read before the run ends. So each rank of the
+server listens on a socket of its own for the run (vtouch::RemoteCancelListener), the first names
+its port in the filter's progress text and tells the others when it hears the token. The port
+travels in the progress text, which ParaView sends to the client during the update; this module
 reads the port from the progress events and sends the filter's token there::
 
-    from vesseltouch.remote_cancel import RemoteCancel
-    cancel = RemoteCancel(centerline)      # before the update: sets the token, watches progress
+    import vesseltouch
+    cancel = vesseltouch.RemoteCancel(centerline)  # before the update: the token, the progress
     threading.Timer(5.0, cancel.cancel).start()   # from any thread, or from a progress callback
     centerline.UpdatePipeline()            # returns early: empty output, "Cancelled."
     cancel.close()
