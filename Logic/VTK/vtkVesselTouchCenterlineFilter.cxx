@@ -6,6 +6,8 @@
 #include "vtouchDistributedRawRegion.h"
 #include "vtouchDistributedGlobalField.h"
 #include "vtouchDistributedWholePathRefinement.h"
+#include "vtouchControllerCollectives.h"
+#include "vtouchRemoteCancelListener.h"
 #include "vtouchPolyDataToQSkeleton.h"
 #include "vtouchQSkeletonToPolyData.h"
 #include "vtouchRangeForeground.h"
@@ -55,6 +57,8 @@ vtkVesselTouchCenterlineFilter::vtkVesselTouchCenterlineFilter()
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }
+
+vtkVesselTouchCenterlineFilter::~vtkVesselTouchCenterlineFilter() = default;
 
 int vtkVesselTouchCenterlineFilter::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -124,6 +128,95 @@ int vtkVesselTouchCenterlineFilter::RequestUpdateExtent(vtkInformation*,
 
 int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // The client's Cancel on a pvserver (issue 19 item 1, issue 16 item 6): the first rank's
+  // socket is open for this run only, closed however the run ends.
+  struct RemoteCancelScope
+  {
+    vtkVesselTouchCenterlineFilter* filter;
+    ~RemoteCancelScope() { this->filter->CloseRemoteCancel(); }
+  } scope{ this };
+  this->OpenRemoteCancel();
+  return this->ExecuteRequest(inputVector, outputVector);
+}
+
+void vtkVesselTouchCenterlineFilter::OpenRemoteCancel()
+{
+  this->RemoteCancel.reset();
+  this->RemoteCancelPort = 0;
+  vtkMultiProcessController* global = vtkMultiProcessController::GetGlobalController();
+  const bool firstRank = !global || global->GetLocalProcessId() == 0;
+  if (this->RemoteCancelToken.empty())
+  {
+    return;
+  }
+  this->RemoteCancel = std::make_unique<vtouch::RemoteCancelListener>(this->RemoteCancelToken);
+  if (!this->RemoteCancel->listening())
+  {
+    vtkWarningMacro(<< "VesselCenterline: this run cannot be cancelled from the client"
+                    << (firstRank ? "" : " before this rank's next exchange") << " ("
+                    << this->RemoteCancel->error() << ").");
+    this->RemoteCancel.reset();
+    return;
+  }
+  this->RemoteCancelPort = this->RemoteCancel->port();
+  if (!firstRank)
+  {
+    return; // told by the first rank's socket (ShareRemoteCancelPorts)
+  }
+  // ParaView sends the first rank's progress, with its text, to the client during the update
+  // (vtkPVProgressHandler): the client reads the port there (vesseltouch.remote_cancel). Every
+  // progress report of the run carries it, so a report ParaView skips loses nothing.
+  const std::string text =
+    "VesselCenterline: cancel port " + std::to_string(this->RemoteCancelPort);
+  this->SetProgressText(text.c_str());
+  this->UpdateProgress(0.0);
+}
+
+void vtkVesselTouchCenterlineFilter::ShareRemoteCancelPorts()
+{
+  vtkMultiProcessController* global = vtkMultiProcessController::GetGlobalController();
+  vtouch::ControllerCollectives c(vtouch::DistributedCenterline::controllerFor(
+    global->GetLocalProcessId(), global->GetNumberOfProcesses()));
+  // Each rank's port (0: none) and host name, as numbers.
+  std::vector<double> mine{ static_cast<double>(this->RemoteCancelPort) };
+  for (const char ch : vtouch::RemoteCancelListener::hostName())
+  {
+    mine.push_back(static_cast<double>(static_cast<unsigned char>(ch)));
+  }
+  const std::vector<std::vector<double>> all = c.allGather(mine);
+  if (c.rank() != 0 || !this->RemoteCancel)
+  {
+    return;
+  }
+  std::vector<std::pair<std::string, int>> peers;
+  for (std::size_t r = 1; r < all.size(); ++r)
+  {
+    if (all[r].empty() || all[r][0] <= 0.0)
+    {
+      continue;
+    }
+    std::string host;
+    for (std::size_t i = 1; i < all[r].size(); ++i)
+    {
+      host.push_back(static_cast<char>(static_cast<unsigned char>(all[r][i])));
+    }
+    peers.emplace_back(host, static_cast<int>(all[r][0]));
+  }
+  this->RemoteCancel->forwardTo(std::move(peers));
+}
+
+void vtkVesselTouchCenterlineFilter::CloseRemoteCancel()
+{
+  if (this->RemoteCancel)
+  {
+    this->RemoteCancel.reset(); // joins its thread, closes the socket
+    this->SetProgressText(nullptr);
+  }
+}
+
+int vtkVesselTouchCenterlineFilter::ExecuteRequest(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
@@ -400,6 +493,13 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   {
     return cancelled(); // the cancel flag or AbortExecute stopped the coder
   }
+  catch (const vtouch::Cancelled&)
+  {
+    // The ranks agreed to cancel in an exchange of the coder's hooks (the global field's
+    // rounds, CancellableCollectives): this rank goes on to the run's next cancel point like a
+    // rank that stopped for its own cancel, so no rank waits for it (issue 19 item 1).
+    return cancelled();
+  }
   catch (const itk::ExceptionObject& e)
   {
     fail(std::string("VesselCenterline: ") + e.GetDescription());
@@ -471,6 +571,25 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   { return this->GetGhostMarginVoxels(spacing); };
   hooks.automaticIntensityRange = this->AutomaticIntensityRange;
   hooks.timeline = this->DistributedTimeline.take();
+  // A cancel (the first rank's remote cancel, AbortExecute) at every exchange of the ranks,
+  // taken by every rank at the same one (vtouch::CancellableCollectives, issue 19 item 1).
+  // On the first rank with a cancel socket, each exchange also reports the progress again: the
+  // ranks' rounds report none of their own, and ParaView sends the first rank's progress (with
+  // the port in its text) at most once a second and only when reported, so without it the
+  // client would learn the port only when the coder first reports (seconds to minutes later).
+  const vtouch::CancellableCollectives::CancelCheck cancelRequested = [this]
+  {
+    if (this->RemoteCancel)
+    {
+      this->UpdateProgress(this->GetProgress());
+    }
+    return this->CancelRequested();
+  };
+  hooks.cancelRequested = cancelRequested;
+  if (!this->RemoteCancelToken.empty())
+  {
+    this->ShareRemoteCancelPorts(); // collective: the token is on every rank's filter
+  }
   // The global SS field (issue 19 item 2): every rank codes its piece with the single run's SS
   // field, computed across the ranks (vtouch::DistributedGlobalField, the coder's hook), instead
   // of from roots of its own: from the seed in the seeded modes, from the single run's automatic
@@ -499,7 +618,8 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     parameters.minimumComponentSize =
       static_cast<std::uint64_t>(std::max(1, this->MinimumComponentSize));
     parameters.clusterWidth_mm = 0.0;
-    field = vtouch::DistributedGlobalField::automaticRoot(controller(), input, whole, parameters);
+    field = vtouch::DistributedGlobalField::automaticRoot(
+      controller(), input, whole, parameters, cancelRequested);
     this->DistributedField = field.get();
   };
   // The raw modes (automatic range): the range and the region with the other ranks (collective),
@@ -520,7 +640,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
       region = vtouch::DistributedRawRegion::run(
-        controller(), input, scalars, whole, request, regionReport);
+        controller(), input, scalars, whole, request, regionReport, cancelRequested);
       this->DistributedRegion = &region;
       if (!this->UseSeedPoint)
       {
@@ -548,8 +668,8 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
           seed_Whole[a] = region.seedIndex[a] + e[2 * a] - whole[2 * a];
         }
       }
-      field =
-        vtouch::DistributedGlobalField::seeded(controller(), input, whole, here, seed_Whole, true);
+      field = vtouch::DistributedGlobalField::seeded(
+        controller(), input, whole, here, seed_Whole, true, cancelRequested);
       this->DistributedField = field.get();
     };
   }
@@ -561,7 +681,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
         input ? vtouch::DistributedGlobalField::seedVoxel_Whole(input, this->SeedPoint, whole)
               : std::array<std::int64_t, 3>{ -1, -1, -1 };
       field = vtouch::DistributedGlobalField::seeded(
-        controller(), input, whole, input != nullptr, seed_Whole, false);
+        controller(), input, whole, input != nullptr, seed_Whole, false, cancelRequested);
       this->DistributedField = field.get();
     };
   }
@@ -643,12 +763,38 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
       // A two-valued volume without a seed is a mask the single run does not refine.
-      return vtouch::DistributedWholePathRefinement::run(
-        controller(), input, scalars, whole, region.binary ? nullptr : stitched, settings, report);
+      return vtouch::DistributedWholePathRefinement::run(controller(),
+        input,
+        scalars,
+        whole,
+        region.binary ? nullptr : stitched,
+        settings,
+        report,
+        cancelRequested);
     };
   }
-  const vtouch::DistributedRequest::Outcome outcome =
-    vtouch::DistributedRequest::run(inputVector, output, hooks);
+  vtouch::DistributedRequest::Outcome outcome;
+  try
+  {
+    outcome = vtouch::DistributedRequest::run(inputVector, output, hooks);
+  }
+  catch (const vtouch::Cancelled&)
+  {
+    // Every rank threw at the same exchange (CancellableCollectives): an empty output and
+    // "Cancelled." on every rank, as a cancelled single run.
+    this->DistributedRegion = nullptr;
+    this->DistributedField = nullptr;
+    this->QuietErrors = false; // a piece's run may have been left by the exception
+    output->Initialize();
+    this->ExtractionMessage = vtouch::cancelledMessage();
+    this->LastRunCancelled = true;
+    vtouch::addRangeFieldData(output->GetFieldData(),
+      this->IntensityRangeUsed[0],
+      this->IntensityRangeUsed[1],
+      this->AutomaticIntensityRange,
+      this->ExtractionMessage);
+    return 1;
+  }
   this->DistributedRegion = nullptr;
   this->DistributedField = nullptr;
   this->ExtractionMessage = outcome.message;
@@ -692,7 +838,8 @@ void vtkVesselTouchCenterlineFilter::AddRestOfRegion(vtkInformationVector** inpu
 
 bool vtkVesselTouchCenterlineFilter::CancelRequested()
 {
-  return vtouch::cancelRequested(this->CancelFlag, this);
+  return vtouch::cancelRequested(this->CancelFlag, this) ||
+         (this->RemoteCancel && this->RemoteCancel->cancelled().load());
 }
 
 std::string vtkVesselTouchCenterlineFilter::RunKey(vtkImageData* input, vtkDataArray* scalars) const

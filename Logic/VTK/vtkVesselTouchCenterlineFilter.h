@@ -29,6 +29,7 @@
 #include <string> // for ExtractionMessage
 #ifndef __VTK_WRAP__
 #include <atomic> // for the cancel flag
+#include <memory> // for the cancel socket
 
 #include "vtouchRankTimeline.h" // for the distributed run's time stamps
 namespace vtouch
@@ -37,6 +38,7 @@ struct CandidateRegionOutcome; // the distributed raw seeded mode's region (Requ
 class DistributedGlobalField;  // the distributed modes' global SS field (RequestDistributed)
 struct PieceInWhole;           // a distributed run's piece in the whole volume (ExtractVolume)
 class QSkeleton;
+class RemoteCancelListener; // the first rank's cancel socket (RequestData)
 }
 #endif
 
@@ -161,6 +163,23 @@ public:
   /// Whether the last run was cancelled (the cancel flag or AbortExecute): an empty output with
   /// ExtractionMessage "Cancelled.".
   vtkGetMacro(LastRunCancelled, bool);
+  /// A cancel from the client on a pvserver (issue 19 item 1, issue 16 item 6): when not empty,
+  /// every rank opens a socket for the run (vtouch::RemoteCancelListener), the first names its
+  /// port in the progress text ("VesselCenterline: cancel port <port>") and, when a connection
+  /// sends this token (one line), tells the others' sockets; every rank stops. The client chooses
+  /// the token (a random string per proxy: vesseltouch.remote_cancel). Default empty: no socket.
+  void SetRemoteCancelToken(const char* token)
+  {
+    const std::string t = token ? token : "";
+    if (t != this->RemoteCancelToken)
+    {
+      this->RemoteCancelToken = t;
+      this->Modified();
+    }
+  }
+  const char* GetRemoteCancelToken() const { return this->RemoteCancelToken.c_str(); }
+  /// The port the last run's cancel socket listened on (0: none; an informational property).
+  vtkGetMacro(RemoteCancelPort, int);
 #ifndef __VTK_WRAP__
   /// A flag another thread sets to stop the run at its next check point (the stages check it
   /// every few milliseconds of work). The caller keeps it alive while the filter runs; null
@@ -173,7 +192,7 @@ public:
 
 protected:
   vtkVesselTouchCenterlineFilter();
-  ~vtkVesselTouchCenterlineFilter() override = default;
+  ~vtkVesselTouchCenterlineFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   /// In a parallel pipeline (pvserver under MPI) each rank asks for its own piece (the
@@ -215,8 +234,18 @@ private:
   /// vtkErrorMacro, unless a distributed piece's run defers its errors to the stitched result.
   void Complain(const std::string& message);
   std::string RunKey(vtkImageData* input, vtkDataArray* scalars) const;
-  /// Whether the run is to stop (cancel flag or AbortExecute).
+  /// Whether the run is to stop (cancel flag, AbortExecute, or the client's remote cancel).
   bool CancelRequested();
+  /// RequestData's run (RequestData opens the first rank's cancel socket around it).
+  int ExecuteRequest(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  /// Opens the first rank's cancel socket when RemoteCancelToken is set and names its port in
+  /// the progress text (a socket that cannot open: a warning, the run goes on uncancellable).
+  void OpenRemoteCancel();
+  /// Closes it and clears the progress text.
+  void CloseRemoteCancel();
+  /// Collective (distributed runs with a token): the ranks' cancel sockets to the first rank,
+  /// which tells them when it hears the client (RemoteCancelListener::forwardTo).
+  void ShareRemoteCancelPorts();
   /// Returns the precomputed output in `output` when `key` is its key (and forgets it).
   bool UsePrecomputed(const std::string& key, vtkPolyData* output);
 
@@ -245,8 +274,12 @@ private:
   std::string PrecomputedKey;
   bool LastRunPrecomputed = false;
   bool LastRunCancelled = false;
+  std::string RemoteCancelToken;
+  int RemoteCancelPort = 0;
 #ifndef __VTK_WRAP__
   const std::atomic<bool>* CancelFlag = nullptr;
+  /// The first rank's cancel socket while a run with a RemoteCancelToken runs (else null).
+  std::unique_ptr<vtouch::RemoteCancelListener> RemoteCancel;
   /// Set by RequestDistributed in the raw seeded mode while ExtractVolume runs on the piece: the
   /// candidate region the ranks computed together, used instead of the piece's own.
   const vtouch::CandidateRegionOutcome* DistributedRegion = nullptr;

@@ -177,8 +177,10 @@ std::array<std::int64_t, 3> DistributedGlobalField::seedVoxel_Whole(vtkImageData
   return index;
 }
 
-DistributedGlobalField::DistributedGlobalField(vtkMultiProcessController* controller)
-  : Collectives(std::make_unique<ControllerCollectives>(controller))
+DistributedGlobalField::DistributedGlobalField(vtkMultiProcessController* controller,
+  const CancellableCollectives::CancelCheck& cancelRequested)
+  : Exchanges(std::make_unique<ControllerCollectives>(controller))
+  , Collectives(std::make_unique<CancellableCollectives>(*this->Exchanges, cancelRequested))
 {
 }
 
@@ -190,9 +192,11 @@ std::unique_ptr<DistributedGlobalField> DistributedGlobalField::seeded(
   const VoxelExtent6& whole,
   bool hasSeed,
   const std::array<std::int64_t, 3>& seed_Whole,
-  bool clearOuterLayer)
+  bool clearOuterLayer,
+  const CancellableCollectives::CancelCheck& cancelRequested)
 {
-  std::unique_ptr<DistributedGlobalField> f(new DistributedGlobalField(controller));
+  std::unique_ptr<DistributedGlobalField> f(
+    new DistributedGlobalField(controller, cancelRequested));
   SeededDistributedCoding::Settings settings;
   settings.clearOuterLayer = clearOuterLayer;
   PieceLayout layout = gatherLayout(*f->Collectives, input, input != nullptr, whole);
@@ -211,9 +215,11 @@ std::unique_ptr<DistributedGlobalField> DistributedGlobalField::automaticRoot(
   vtkMultiProcessController* controller,
   vtkImageData* input,
   const VoxelExtent6& whole,
-  const DistributedRootChoice::Parameters& parameters)
+  const DistributedRootChoice::Parameters& parameters,
+  const CancellableCollectives::CancelCheck& cancelRequested)
 {
-  std::unique_ptr<DistributedGlobalField> f(new DistributedGlobalField(controller));
+  std::unique_ptr<DistributedGlobalField> f(
+    new DistributedGlobalField(controller, cancelRequested));
   PieceLayout layout = gatherLayout(*f->Collectives, input, input != nullptr, whole);
   f->FaceTips = std::make_unique<DistributedFaceTips>(*f->Collectives, layout);
   f->Field = std::make_unique<AutomaticRootSource>(

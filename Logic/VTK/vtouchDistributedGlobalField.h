@@ -13,6 +13,7 @@
 #include "vtouchDistributedFaceTips.h"
 #include "vtouchDistributedRootChoice.h"
 #include "vtouchPieceLayout.h"
+#include "vtouchCancellableCollectives.h"
 #include "vtouchRankCollectives.h"
 #include "vtouchSparseVesselMask.h"
 
@@ -55,7 +56,8 @@ public:
     const VoxelExtent6& whole,
     bool hasSeed,
     const std::array<std::int64_t, 3>& seed_Whole,
-    bool clearOuterLayer);
+    bool clearOuterLayer,
+    const CancellableCollectives::CancelCheck& cancelRequested);
   /// The unseeded thresholded or binary mask. Collective as seeded(). `parameters`: the coder's
   /// MinimumComponentSize and cluster width. Reports RootChoiceRounds, RootChoicePropagations,
   /// RootChoiceComponents and RootChoiceRoots (whole index, every root voxel of every coded
@@ -64,7 +66,8 @@ public:
     vtkMultiProcessController* controller,
     vtkImageData* input,
     const VoxelExtent6& whole,
-    const DistributedRootChoice::Parameters& parameters);
+    const DistributedRootChoice::Parameters& parameters,
+    const CancellableCollectives::CancelCheck& cancelRequested);
   ~DistributedGlobalField();
 
   /// The whole-volume voxel of a world point on `input` (which holds its extent of the whole).
@@ -92,9 +95,12 @@ public:
   void addReport(vtkFieldData* fd) const;
 
 private:
-  explicit DistributedGlobalField(vtkMultiProcessController* controller);
+  /// `cancelRequested`: this rank's cancel (every exchange a cancel point, issue 19 item 1).
+  DistributedGlobalField(vtkMultiProcessController* controller,
+    const CancellableCollectives::CancelCheck& cancelRequested);
 
-  std::unique_ptr<RankCollectives> Collectives;
+  std::unique_ptr<RankCollectives> Exchanges;   ///< over the controller
+  std::unique_ptr<RankCollectives> Collectives; ///< Exchanges, cancellable
   std::unique_ptr<Source> Field;
   std::unique_ptr<DistributedFaceTips> FaceTips;
   bool FieldGiven = false; ///< the field's rounds succeeded (the same verdict on every rank)

@@ -120,9 +120,12 @@ CandidateRegionOutcome DistributedRawRegion::run(vtkMultiProcessController* cont
   vtkDataArray* scalars,
   const VoxelExtent6& whole,
   const CandidateRegionRequest& request,
-  Report& report)
+  Report& report,
+  const CancellableCollectives::CancelCheck& cancelRequested)
 {
-  ControllerCollectives c(controller);
+  // Every exchange a cancel point (issue 19 item 1): a cancel on the first rank stops all.
+  ControllerCollectives exchanges(controller);
+  CancellableCollectives c(exchanges, cancelRequested);
   CandidateRegionOutcome out;
   out.automatic = true;
   const bool usable = piece && scalars && scalars->GetNumberOfComponents() == 1 &&

@@ -5,6 +5,7 @@
 // private helper (the hook in vtkVesselTouchCenterlineFilter::RequestDistributed).
 #pragma once
 
+#include "vtouchCancellableCollectives.h"
 #include "vtouchCandidateRegionRunner.h"
 #include "vtouchPieceOwnership.h"
 
@@ -61,7 +62,8 @@ public:
     vtkDataArray* scalars,
     const VoxelExtent6& whole,
     const CandidateRegionRequest& request,
-    Report& report);
+    Report& report,
+    const CancellableCollectives::CancelCheck& cancelRequested);
 };
 
 } // namespace vtouch

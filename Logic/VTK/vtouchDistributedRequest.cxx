@@ -1,6 +1,7 @@
 #include "vtouchDistributedRequest.h"
 
 #include "vtouchCandidateRegionRunner.h"
+#include "vtouchControllerCollectives.h"
 #include "vtouchDistributedCenterline.h"
 #include "vtouchPolyDataToQSkeleton.h"
 
@@ -128,7 +129,13 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   {
     hooks.afterExtract(); // collective: a rank without a piece joins too
   }
-  // Collective: every rank gets here once per run, whatever its piece gave.
+  // Collective: every rank gets here once per run, whatever its piece gave. First a cancel
+  // point of its own (one word per rank): the first rank may have stopped its own stages for a
+  // cancel the others have not heard of yet; every rank leaves here together, before the gather.
+  {
+    ControllerCollectives exchanges(controller);
+    CancellableCollectives(exchanges, hooks.cancelRequested).agree();
+  }
   DistributedCenterline::Result result;
   output->Initialize();
   if (!DistributedCenterline::gatherAndStitch(

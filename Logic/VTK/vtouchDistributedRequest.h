@@ -5,6 +5,7 @@
 #pragma once
 
 #include "vtouchDistributedCenterline.h" // for VoxelExtent6
+#include "vtouchCancellableCollectives.h"
 #include "vtouchQSkeleton.h"
 #include "vtouchRankTimeline.h"
 
@@ -51,6 +52,10 @@ public:
     /// This rank's pipeline stamps of the run (the request, RequestData's entry), reported with
     /// the rest of its breakdown (PieceReport).
     RankTimeline timeline;
+    /// This rank's cancel request (may be empty): read at the run's cancel points (every
+    /// exchange of the ranks, CancellableCollectives); a cancel throws vtouch::Cancelled out of
+    /// run() on every rank at the same one.
+    std::function<bool()> cancelRequested;
     /// Optional, collective: runs on every rank before its piece is coded, with or without an
     /// input (the raw seeded mode's range and region across the ranks).
     std::function<void(vtkImageData* input, const VoxelExtent6& whole)> beforePiece;
@@ -85,7 +90,8 @@ public:
     double rangeUsed[2] = { 0.0, 0.0 };
   };
   /// Collective: every rank calls it once per run. `output` is the rank's output (empty on every
-  /// rank but the first).
+  /// rank but the first). Throws vtouch::Cancelled on every rank together when a rank's
+  /// hooks.cancelRequested asked at a cancel point.
   static Outcome run(vtkInformationVector** inputVector, vtkPolyData* output, const Hooks& hooks);
 };
 

@@ -60,9 +60,12 @@ std::string DistributedWholePathRefinement::run(vtkMultiProcessController* contr
   const VoxelExtent6& whole,
   QSkeleton* stitched,
   const DistributedRawRefinement::Settings& settings,
-  vtkFieldData* report)
+  vtkFieldData* report,
+  const CancellableCollectives::CancelCheck& cancelRequested)
 {
-  ControllerCollectives c(controller);
+  // Every exchange a cancel point (issue 19 item 1): a cancel on the first rank stops all.
+  ControllerCollectives exchanges(controller);
+  CancellableCollectives c(exchanges, cancelRequested);
   const bool usable = piece && scalars && scalars->GetNumberOfComponents() == 1 &&
                       scalars->GetNumberOfTuples() == piece->GetNumberOfPoints();
   const PieceLayout layout = DistributedGlobalField::gatherLayout(c, piece, usable, whole);

@@ -5,6 +5,7 @@
 // the filter's private helper (DistributedRequest::Hooks::afterStitchCollective).
 #pragma once
 
+#include "vtouchCancellableCollectives.h"
 #include "vtouchDistributedCenterline.h" // for VoxelExtent6
 #include "vtouchDistributedRawRefinement.h"
 
@@ -35,7 +36,8 @@ public:
     const VoxelExtent6& whole,
     QSkeleton* stitched,
     const DistributedRawRefinement::Settings& settings,
-    vtkFieldData* report);
+    vtkFieldData* report,
+    const CancellableCollectives::CancelCheck& cancelRequested);
 };
 
 } // namespace vtouch
