@@ -1,6 +1,7 @@
 #include "vtkVesselTouchCandidateRegionFilter.h"
 
 #include "vtouchCandidateRegionRunner.h"
+#include "vtouchDistributedCenterline.h"
 
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
@@ -102,7 +103,10 @@ int vtkVesselTouchCandidateRegionFilter::RequestData(vtkInformation*,
   vtouch::CandidateRegionOutcome region;
   try
   {
-    region = vtouch::runCandidateRegion(input, scalars, request);
+    // From index 0 whatever the input's extent (Extract Subset, a VOI): the runner indexes the
+    // voxels from the first one; the output keeps the input's extent, in the same voxel order.
+    region = vtouch::runCandidateRegion(
+      vtouch::DistributedCenterline::pieceFromIndexZero(input).Get(), scalars, request);
   }
   catch (const vtouch::Cancelled&)
   {

@@ -231,7 +231,22 @@ int vtkVesselTouchCenterlineFilter::ExecuteRequest(vtkInformationVector** inputV
     output->Initialize(); // the first piece codes the whole volume (RequestUpdateExtent)
     return 1;
   }
-  return this->ExtractVolume(inputVector, input, output);
+  int extent[6] = { 0, -1, 0, -1, 0, -1 };
+  if (input)
+  {
+    input->GetExtent(extent);
+  }
+  if (extent[0] == 0 && extent[2] == 0 && extent[4] == 0)
+  {
+    return this->ExtractVolume(inputVector, input, output);
+  }
+  // A volume whose extent does not start at 0 (ParaView's Extract Subset, a reader's VOI): every
+  // stage indexes the voxels from the first one, so it gets the same voxels from index 0, and
+  // the coder the frame that places them where they are, as a distributed rank's piece does.
+  // Before, the positions came out shifted by the extent's start times the spacing.
+  const vtouch::PieceInWhole frame = vtouch::DistributedCenterline::pieceInWhole(input);
+  return this->ExtractVolume(
+    inputVector, vtouch::DistributedCenterline::pieceFromIndexZero(input), output, &frame);
 }
 
 void vtkVesselTouchCenterlineFilter::Complain(const std::string& message)

@@ -80,7 +80,8 @@ inline std::string seedOutsideVolumeMessage(const double seed_World_mm[3],
 }
 
 /// Voxel index (origin + direction * (index * spacing), nearest) of a world point, as ITK
-/// imports the image (extent ignored, as the voxel coder's import does).
+/// imports the image: from index 0 (the filters hand the runner and the coder an image whose
+/// extent starts at 0, DistributedCenterline::pieceFromIndexZero).
 inline std::array<std::int64_t, 3> worldToIndex(vtkImageData* image, const double p[3])
 {
   double origin[3], spacing[3];
