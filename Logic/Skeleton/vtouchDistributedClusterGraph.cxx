@@ -1,5 +1,6 @@
 // vtouch::DistributedClusterGraph: one component's cluster graph across pieces (see the header).
 #include "vtouchDistributedClusterGraph.h"
+#include "vtouchFloatWords.h"
 
 #include "vtouchSkeletonVoxelCodes.h"
 #include "vtouchSkeletonVoxelGrid.h"
@@ -18,21 +19,6 @@ using Index = std::array<std::int64_t, 3>;
 constexpr float kInf = skeleton::VoxelCodes::kInf;
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 constexpr std::int64_t kNoVoxel = std::numeric_limits<std::int64_t>::max();
-
-std::int64_t bitsOf(float f)
-{
-  std::uint32_t u = 0;
-  std::memcpy(&u, &f, sizeof u);
-  return static_cast<std::int64_t>(u);
-}
-
-float floatOf(std::int64_t bits)
-{
-  const auto u = static_cast<std::uint32_t>(bits);
-  float f = 0.0F;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
 
 /// The root of `r` in the forest `parent` (path halving).
 std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t r)
@@ -111,14 +97,14 @@ struct Record
       { name,
         band,
         count,
-        bitsOf(maxBs),
-        bitsOf(bestSs),
+        floatToWord(maxBs),
+        floatToWord(bestSs),
         best,
         sum[0],
         sum[1],
         sum[2],
         first,
-        bitsOf(firstSs) });
+        floatToWord(firstSs) });
   }
   static Record unpack(const std::int64_t* v)
   {
@@ -126,14 +112,14 @@ struct Record
     r.name = v[0];
     r.band = v[1];
     r.count = v[2];
-    r.maxBs = floatOf(v[3]);
-    r.bestSs = floatOf(v[4]);
+    r.maxBs = wordToFloat(v[3]);
+    r.bestSs = wordToFloat(v[4]);
     r.best = v[5];
     r.sum[0] = v[6];
     r.sum[1] = v[7];
     r.sum[2] = v[8];
     r.first = v[9];
-    r.firstSs = floatOf(v[10]);
+    r.firstSs = wordToFloat(v[10]);
     return r;
   }
 };

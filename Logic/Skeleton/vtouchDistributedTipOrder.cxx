@@ -1,6 +1,7 @@
 // vtouch::DistributedTipOrder: the true tips gathered from every rank, sorted as the single run
 // sorts its tips.
 #include "vtouchDistributedTipOrder.h"
+#include "vtouchFloatWords.h"
 
 #include <algorithm>
 #include <cstring>
@@ -10,24 +11,6 @@
 
 namespace vtouch
 {
-namespace
-{
-/// A non-negative float's bits, as an integer of the same order (the SS codes are >= 0).
-std::int64_t orderedBits(float value)
-{
-  std::uint32_t bits = 0;
-  std::memcpy(&bits, &value, sizeof bits);
-  return static_cast<std::int64_t>(bits);
-}
-float fromBits(std::int64_t bits)
-{
-  const auto b = static_cast<std::uint32_t>(bits);
-  float value = 0.0F;
-  std::memcpy(&value, &b, sizeof value);
-  return value;
-}
-} // namespace
-
 std::int64_t DistributedTipOrder::rankKey(std::uint32_t band, std::int64_t place)
 {
   return (static_cast<std::int64_t>(band) << kPlaceBits) | (kPlaceMask - place);
@@ -38,7 +21,7 @@ void DistributedTipOrder::gather(RankCollectives& collectives, const std::vector
   std::vector<std::int64_t> flat;
   for (const Tip& t : mine)
   {
-    flat.insert(flat.end(), { t.band, orderedBits(t.firstSs_mm), t.firstWhole });
+    flat.insert(flat.end(), { t.band, floatToWord(t.firstSs_mm), t.firstWhole });
   }
   std::vector<Tip> all;
   for (const std::vector<std::int64_t>& theirs : collectives.allGather(flat))
@@ -46,7 +29,7 @@ void DistributedTipOrder::gather(RankCollectives& collectives, const std::vector
     for (std::size_t i = 0; i + 2 < theirs.size(); i += 3)
     {
       all.push_back(
-        { static_cast<std::uint32_t>(theirs[i]), fromBits(theirs[i + 1]), theirs[i + 2] });
+        { static_cast<std::uint32_t>(theirs[i]), wordToFloat(theirs[i + 1]), theirs[i + 2] });
     }
   }
   // The single run's tip order (TraceStage::run without answers): the band, higher first, then

@@ -1,4 +1,5 @@
 #include "vtouchDistributedVolumePages.h"
+#include "vtouchFloatWords.h"
 
 #include <algorithm>
 #include <cstring>
@@ -50,21 +51,6 @@ void forEachVoxel(const VoxelBox& b, F&& f)
       {
         f(std::array<std::int64_t, 3>{ i, j, k });
       }
-}
-
-std::int64_t floatBits(float f)
-{
-  std::uint32_t u = 0;
-  std::memcpy(&u, &f, sizeof u);
-  return static_cast<std::int64_t>(u);
-}
-
-float bitsFloat(std::int64_t w)
-{
-  const auto u = static_cast<std::uint32_t>(static_cast<std::uint64_t>(w) & 0xffffffffU);
-  float f = 0.0F;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
 }
 
 void appendText(std::vector<std::int64_t>& words, const std::string& text)
@@ -204,9 +190,9 @@ std::vector<std::int64_t> DistributedVolumePages::parts(
     {
       if (floats)
       {
-        const std::int64_t lo = floatBits(static_cast<float>(values[2 * i]));
+        const std::int64_t lo = floatToWord(static_cast<float>(values[2 * i]));
         const std::int64_t hi =
-          2 * i + 1 < values.size() ? floatBits(static_cast<float>(values[2 * i + 1])) : 0;
+          2 * i + 1 < values.size() ? floatToWord(static_cast<float>(values[2 * i + 1])) : 0;
         words.push_back(lo | static_cast<std::int64_t>(static_cast<std::uint64_t>(hi) << 32U));
       }
       else
@@ -272,7 +258,7 @@ std::string DistributedVolumePages::store(int r, const std::vector<std::int64_t>
         double x = 0.0;
         if (floats)
         {
-          x = bitsFloat(i % 2 == 0
+          x = wordToFloat(i % 2 == 0
                           ? w[i / 2]
                           : static_cast<std::int64_t>(static_cast<std::uint64_t>(w[i / 2]) >> 32U));
         }
