@@ -296,12 +296,49 @@ bool giveBack(const std::vector<SkeletonFragment>& fragments,
   return true;
 }
 
+/// The copies a lone kept point i (of a fragment of n points whose drops went to `toward`) may
+/// swap with (giveBack), in order: its nearest copy, then its copies in the fragments its dropped
+/// neighbours went to. Project rule (h17y): at a junction on an edge of pieces every piece coded
+/// the same centre, so the nearest copy is a tie at distance 0 decided by the lowest piece, often
+/// a band fragment with nothing kept around it; the fragment the neighbours went to is the one
+/// that dropped this very point in the lone point's favour, and unless it takes it back the
+/// point is dropped below as a copy of that fragment's kept neighbours: neither keeps it (the Y
+/// in the CTA's frame on 1 2 2 pieces lost its junction point, 0.708 mm).
+std::vector<const Copy*> swapCandidates(const std::vector<Copy>& copies,
+  const std::vector<long>& toward,
+  std::size_t i,
+  std::size_t n)
+{
+  std::vector<const Copy*> out;
+  if (copies.empty())
+  {
+    return out;
+  }
+  out.push_back(&copies.front());
+  for (const std::size_t k : { i - 1, i + 1 })
+  {
+    if (k >= n || toward[k] < 0)
+    {
+      continue; // (i - 1 wraps past n at i = 0)
+    }
+    for (const Copy& c : copies)
+    {
+      if (c.fragment == toward[k] && std::find(out.begin(), out.end(), &c) == out.end())
+      {
+        out.push_back(&c);
+      }
+    }
+  }
+  return out;
+}
+
 /// Project rule (issue 19, item 2): a kept run of one point is no path (a polyline needs two
 /// points; the session refuses it). Found on the 256^3 scaling tree with 4 ranks: a branch
 /// leaving its parent at a shallow angle, each rank placing the junction ~4 voxels apart along
 /// the parent; the lower rank's branch lost every point to the other's copy but its attached head
 /// (on the parent), whose one-sided direction failed the copy test. Such a point is settled here:
-/// - swapped back: when its nearest copy h[j] was dropped in its favour, the copy it replaced
+/// - swapped back: when its nearest copy h[j], or else its copy in the fragment its dropped
+///   neighbours went to (swapCandidates, h17y), was dropped in its favour, the copy it replaced
 ///   takes its place again (giveBack): one run, not a zigzag of one-point runs;
 /// - a copy: when it lies within the copy reach (no direction test: its direction is one-sided or
 ///   crosses the switch) of the kept points of the fragment its dropped neighbours went to, it is
@@ -328,10 +365,13 @@ void settleOnePointRuns(const std::vector<SkeletonFragment>& fragments,
         continue;
       }
       long settledToward = -1;
-      if (!copies[g][i].empty() &&
-          giveBack(fragments, copies[g][i].front(), g, i, reach_mm, keep, toward))
+      for (const Copy* c : swapCandidates(copies[g][i], toward[g], i, n))
       {
-        settledToward = copies[g][i].front().fragment;
+        if (giveBack(fragments, *c, g, i, reach_mm, keep, toward))
+        {
+          settledToward = c->fragment;
+          break;
+        }
       }
       // A point between stretches that went to two different fragments bridges them (a path
       // across a corner: the two kept runs may lie farther apart than a join reaches): it stays.
