@@ -297,17 +297,21 @@ bool giveBack(const std::vector<SkeletonFragment>& fragments,
 }
 
 /// The copies a lone kept point i (of a fragment of n points whose drops went to `toward`) may
-/// swap with (giveBack), in order: its nearest copy, then its copies in the fragments its dropped
-/// neighbours went to. Project rule (h17y): at a junction on an edge of pieces every piece coded
-/// the same centre, so the nearest copy is a tie at distance 0 decided by the lowest piece, often
-/// a band fragment with nothing kept around it; the fragment the neighbours went to is the one
-/// that dropped this very point in the lone point's favour, and unless it takes it back the
-/// point is dropped below as a copy of that fragment's kept neighbours: neither keeps it (the Y
-/// in the CTA's frame on 1 2 2 pieces lost its junction point, 0.708 mm).
+/// swap with (giveBack), in order: its nearest copy, then its copies within `coincident_mm` (the
+/// same centre coded by both pieces) in the fragments its dropped neighbours went to. Project
+/// rule (h17y): at a junction on an edge of pieces every piece coded the same centre, so the
+/// nearest copy is a tie at distance 0 decided by the lowest piece, often a band fragment with
+/// nothing kept around it; the fragment the neighbours went to dropped this very point in the
+/// lone point's favour, and unless it takes it back the point is dropped below as a copy of that
+/// fragment's kept neighbours: neither keeps it (the Y in the CTA's frame on 1 2 2 pieces lost
+/// its junction point, 0.708 mm). Only a coincident copy: taking it back changes no position,
+/// while a copy a fraction of a voxel off is the existing rules' business (the random vessels
+/// of SkeletonStitchProperty, whose copies are shifted: one of them lost its join otherwise).
 std::vector<const Copy*> swapCandidates(const std::vector<Copy>& copies,
   const std::vector<long>& toward,
   std::size_t i,
-  std::size_t n)
+  std::size_t n,
+  double coincident_mm)
 {
   std::vector<const Copy*> out;
   if (copies.empty())
@@ -323,7 +327,8 @@ std::vector<const Copy*> swapCandidates(const std::vector<Copy>& copies,
     }
     for (const Copy& c : copies)
     {
-      if (c.fragment == toward[k] && std::find(out.begin(), out.end(), &c) == out.end())
+      if (c.fragment == toward[k] && c.distance <= coincident_mm &&
+          std::find(out.begin(), out.end(), &c) == out.end())
       {
         out.push_back(&c);
       }
@@ -337,9 +342,9 @@ std::vector<const Copy*> swapCandidates(const std::vector<Copy>& copies,
 /// leaving its parent at a shallow angle, each rank placing the junction ~4 voxels apart along
 /// the parent; the lower rank's branch lost every point to the other's copy but its attached head
 /// (on the parent), whose one-sided direction failed the copy test. Such a point is settled here:
-/// - swapped back: when its nearest copy h[j], or else its copy in the fragment its dropped
-///   neighbours went to (swapCandidates, h17y), was dropped in its favour, the copy it replaced
-///   takes its place again (giveBack): one run, not a zigzag of one-point runs;
+/// - swapped back: when its nearest copy h[j], or else its coincident copy in the fragment its
+///   dropped neighbours went to (swapCandidates, h17y), was dropped in its favour, the copy it
+///   replaced takes its place again (giveBack): one run, not a zigzag of one-point runs;
 /// - a copy: when it lies within the copy reach (no direction test: its direction is one-sided or
 ///   crosses the switch) of the kept points of the fragment its dropped neighbours went to, it is
 ///   dropped as a duplicate of that geometry; not when its two neighbours went to two different
@@ -349,6 +354,7 @@ std::vector<const Copy*> swapCandidates(const std::vector<Copy>& copies,
 void settleOnePointRuns(const std::vector<SkeletonFragment>& fragments,
   const std::vector<std::vector<std::vector<Copy>>>& copies,
   double reach_mm,
+  double coincident_mm,
   std::vector<std::vector<signed char>>& keep,
   std::vector<std::vector<long>>& toward)
 {
@@ -365,7 +371,7 @@ void settleOnePointRuns(const std::vector<SkeletonFragment>& fragments,
         continue;
       }
       long settledToward = -1;
-      for (const Copy* c : swapCandidates(copies[g][i], toward[g], i, n))
+      for (const Copy* c : swapCandidates(copies[g][i], toward[g], i, n, coincident_mm))
       {
         if (giveBack(fragments, *c, g, i, reach_mm, keep, toward))
         {
@@ -522,7 +528,7 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
       }
     }
   }
-  settleOnePointRuns(fragments, copies, copyReach_mm, keep, toward);
+  settleOnePointRuns(fragments, copies, copyReach_mm, coincidentPoint_mm, keep, toward);
   std::vector<OverlapRun> runs;
   for (std::size_t g = 0; g < F; ++g)
   {
