@@ -296,13 +296,55 @@ bool giveBack(const std::vector<SkeletonFragment>& fragments,
   return true;
 }
 
+/// The copies a lone kept point i (of a fragment of n points whose drops went to `toward`) may
+/// swap with (giveBack), in order: its nearest copy, then its copies within `coincident_mm` (the
+/// same centre coded by both pieces) in the fragments its dropped neighbours went to. Project
+/// rule (h17y): at a junction on an edge of pieces every piece coded the same centre, so the
+/// nearest copy is a tie at distance 0 decided by the lowest piece, often a band fragment with
+/// nothing kept around it; the fragment the neighbours went to dropped this very point in the
+/// lone point's favour, and unless it takes it back the point is dropped below as a copy of that
+/// fragment's kept neighbours: neither keeps it (the Y in the CTA's frame on 1 2 2 pieces lost
+/// its junction point, 0.708 mm). Only a coincident copy: taking it back changes no position,
+/// while a copy a fraction of a voxel off is the existing rules' business (the random vessels
+/// of SkeletonStitchProperty, whose copies are shifted: one of them lost its join otherwise).
+std::vector<const Copy*> swapCandidates(const std::vector<Copy>& copies,
+  const std::vector<long>& toward,
+  std::size_t i,
+  std::size_t n,
+  double coincident_mm)
+{
+  std::vector<const Copy*> out;
+  if (copies.empty())
+  {
+    return out;
+  }
+  out.push_back(&copies.front());
+  for (const std::size_t k : { i - 1, i + 1 })
+  {
+    if (k >= n || toward[k] < 0)
+    {
+      continue; // (i - 1 wraps past n at i = 0)
+    }
+    for (const Copy& c : copies)
+    {
+      if (c.fragment == toward[k] && c.distance <= coincident_mm &&
+          std::find(out.begin(), out.end(), &c) == out.end())
+      {
+        out.push_back(&c);
+      }
+    }
+  }
+  return out;
+}
+
 /// Project rule (issue 19, item 2): a kept run of one point is no path (a polyline needs two
 /// points; the session refuses it). Found on the 256^3 scaling tree with 4 ranks: a branch
 /// leaving its parent at a shallow angle, each rank placing the junction ~4 voxels apart along
 /// the parent; the lower rank's branch lost every point to the other's copy but its attached head
 /// (on the parent), whose one-sided direction failed the copy test. Such a point is settled here:
-/// - swapped back: when its nearest copy h[j] was dropped in its favour, the copy it replaced
-///   takes its place again (giveBack): one run, not a zigzag of one-point runs;
+/// - swapped back: when its nearest copy h[j], or else its coincident copy in the fragment its
+///   dropped neighbours went to (swapCandidates, h17y), was dropped in its favour, the copy it
+///   replaced takes its place again (giveBack): one run, not a zigzag of one-point runs;
 /// - a copy: when it lies within the copy reach (no direction test: its direction is one-sided or
 ///   crosses the switch) of the kept points of the fragment its dropped neighbours went to, it is
 ///   dropped as a duplicate of that geometry; not when its two neighbours went to two different
@@ -312,6 +354,7 @@ bool giveBack(const std::vector<SkeletonFragment>& fragments,
 void settleOnePointRuns(const std::vector<SkeletonFragment>& fragments,
   const std::vector<std::vector<std::vector<Copy>>>& copies,
   double reach_mm,
+  double coincident_mm,
   std::vector<std::vector<signed char>>& keep,
   std::vector<std::vector<long>>& toward)
 {
@@ -328,10 +371,13 @@ void settleOnePointRuns(const std::vector<SkeletonFragment>& fragments,
         continue;
       }
       long settledToward = -1;
-      if (!copies[g][i].empty() &&
-          giveBack(fragments, copies[g][i].front(), g, i, reach_mm, keep, toward))
+      for (const Copy* c : swapCandidates(copies[g][i], toward[g], i, n, coincident_mm))
       {
-        settledToward = copies[g][i].front().fragment;
+        if (giveBack(fragments, *c, g, i, reach_mm, keep, toward))
+        {
+          settledToward = c->fragment;
+          break;
+        }
       }
       // A point between stretches that went to two different fragments bridges them (a path
       // across a corner: the two kept runs may lie farther apart than a join reaches): it stays.
@@ -482,7 +528,7 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
       }
     }
   }
-  settleOnePointRuns(fragments, copies, copyReach_mm, keep, toward);
+  settleOnePointRuns(fragments, copies, copyReach_mm, coincidentPoint_mm, keep, toward);
   std::vector<OverlapRun> runs;
   for (std::size_t g = 0; g < F; ++g)
   {

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <vector>
 
 namespace vtouch
 {
@@ -86,6 +87,72 @@ TEST(DistributedWholeFrame, TheYOnFourPiecesOfACtaLikeFrameIsTheSingleRunBitForB
   const test::DistributedStitchRun run = runY({ 2, 2, 1 }, ctaLikeFrame());
   EXPECT_GE(run.report.cutEndsJoined, 1);
   expectTheSingleRunsPointsExactly(run);
+}
+
+/// The single run's junction: its parent point and the first point of the branch hung there.
+struct JunctionAt
+{
+  Vec3 parent_World_mm;
+  Vec3 childEnd_World_mm;
+};
+
+std::vector<JunctionAt> junctionsOf(const QSkeleton& s)
+{
+  std::vector<JunctionAt> out;
+  for (const Junction& j : s.junctions)
+  {
+    const SkeletonPath& child = s.paths[static_cast<std::size_t>(j.childPath)];
+    out.push_back({ s.paths[static_cast<std::size_t>(j.parentPath)]
+                      .points[static_cast<std::size_t>(j.parentPoint)]
+                      .position_World_mm,
+      (j.childEnd == Junction::End::Head ? child.points.front() : child.points.back())
+        .position_World_mm });
+  }
+  return out;
+}
+
+bool samePosition(const Vec3& a, const Vec3& b)
+{
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+/// Issue 19 item 2 (h17y): on `1 2 2` pieces of the CTA's frame the Y's junction centre lies by
+/// the edge where the four pieces meet (whole index (64.04, 63.00, 63.69)), owned by rank 2, its
+/// two neighbours along the parent path by rank 3. Every rank codes it; rank 2 sent it in a band
+/// fragment of 6 points and rank 3 dropped its copy for rank 2's. The lone point then swapped with
+/// its nearest copy (the lowest piece's, a tie at 0 mm) or nothing, and was dropped as a copy of
+/// rank 3's kept neighbours: the junction point lost, the branch hung one point on, 0.708 mm. It
+/// now swaps back with rank 3's copy.
+TEST(DistributedWholeFrame, TheYOnFourPiecesAcrossAnEdgeOfACtaLikeFrameKeepsItsJunctionPoint)
+{
+  const test::DistributedStitchRun run = runY({ 1, 2, 2 }, ctaLikeFrame());
+  expectTheSingleRunsPointsExactly(run);
+  const std::vector<JunctionAt> single = junctionsOf(run.single);
+  const std::vector<JunctionAt> stitched = junctionsOf(run.stitched);
+  ASSERT_EQ(single.size(), 1u);
+  ASSERT_EQ(stitched.size(), 1u);
+  EXPECT_TRUE(samePosition(stitched[0].parent_World_mm, single[0].parent_World_mm));
+  EXPECT_TRUE(samePosition(stitched[0].childEnd_World_mm, single[0].childEnd_World_mm));
+  EXPECT_EQ(run.report.pointsDropped, 0);
+  EXPECT_EQ(run.report.strayPointsDropped, 0);
+}
+
+/// The same rule on every split of two to eight pieces the executive makes of the Y, in the
+/// CTA's frame and a TOF-MRA-like one (0.52 x 0.52 x 0.65 mm): the single run's points exactly.
+TEST(DistributedWholeFrame, TheYOnEverySplitOfCtaAndTofLikeFramesIsTheSingleRunBitForBit)
+{
+  IndexFrame tofLike = ctaLikeFrame();
+  tofLike.spacing_mm = { 0.52, 0.52, 0.65 };
+  for (const IndexFrame& frame : { ctaLikeFrame(), tofLike })
+  {
+    for (const std::array<int, 3>& counts : std::vector<std::array<int, 3>>{
+           { 1, 1, 2 }, { 1, 2, 1 }, { 2, 1, 1 }, { 2, 2, 1 }, { 1, 2, 2 }, { 2, 2, 2 } })
+    {
+      SCOPED_TRACE(::testing::Message() << "spacing z " << frame.spacing_mm[2] << " mm, pieces "
+                                        << counts[0] << " " << counts[1] << " " << counts[2]);
+      expectTheSingleRunsPointsExactly(runY(counts, frame));
+    }
+  }
 }
 
 } // namespace
