@@ -166,25 +166,32 @@ class GuiDriver:
             time.sleep(0.5)
 
     def answer_dialog(self, title, key, seconds=60.0, unless=None):
-        """Waits for a window titled ``title`` and presses ``key`` in it; whether it appeared.
-        Returns False at once when ``unless()`` holds (the dialog's work is done without it).
-        A modal dialog holds the driver's replies until it closes, and on a loaded machine it
-        may take far more than a few seconds to appear: the wait ends as soon as it does, so
-        the bound is generous."""
+        """Waits for a window titled ``title``, presses ``key`` in it until it closes, and says
+        whether it appeared. Ends at once when ``unless()`` holds (the dialog's work is done).
+        A modal dialog holds the driver's replies until it closes. On a loaded machine it may
+        take far more than a few seconds to appear, and a key sent as it maps can be lost (the
+        dialog then stays open and ParaView waits on it: GUI.StateRoundTripRestoresPanel timed
+        out so twice), so the key is sent again while the dialog shows."""
         deadline = time.time() + seconds
+        answered = 0  # keys sent
         while time.time() < deadline:
             if unless is not None and unless():
-                return False
+                return answered > 0
             found = subprocess.run(["xdotool", "search", "--onlyvisible", "--name", title],
                                    env=self.env, capture_output=True, text=True, check=False)
             windows = found.stdout.split()
-            if windows:
-                self.xdotool("windowactivate", "--sync", windows[-1])
-                self.xdotool("key", "--window", windows[-1], key)
-                time.sleep(0.5)
-                return True
-            time.sleep(0.3)
-        return False
+            if not windows:
+                if answered:
+                    if answered > 1:
+                        print("'%s' closed after %d keys" % (title, answered), flush=True)
+                    return True  # closed by the key
+                time.sleep(0.3)
+                continue
+            self.xdotool("windowactivate", "--sync", windows[-1])
+            self.xdotool("key", "--window", windows[-1], key)
+            answered += 1
+            time.sleep(0.7)
+        return answered > 0
 
     def screenshot(self, path):
         """The whole screen (the main window) as PNG, through the X server."""
