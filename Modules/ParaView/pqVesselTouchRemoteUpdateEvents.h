@@ -10,8 +10,8 @@
 //
 // processEvents(), called from a progress report of the server (inside the update), runs Qt's
 // pending events once through a filter that keeps away what could talk to the server (project
-// rule: a message sent inside the update breaks the session, "Wrong tag", seen under Xvfb when the
-// window's update requests ran and painted the render view): no timer fires (its event is eaten;
+// rule, a precaution: a message sent inside the update would break the session, and a render of
+// the view in client/server mode talks to the server): no timer fires (its event is eaten;
 // the timer fires again at its next interval, after the update), the window gets only mouse
 // events, which it hands to the widget under the pointer, no key or mouse event reaches any widget
 // but `clickable`, and no widget outside `panel` paints; then `panel` repaints synchronously (as
