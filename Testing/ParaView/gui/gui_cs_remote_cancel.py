@@ -115,9 +115,8 @@ def click_widget(gui, rect):
 
 
 def bar_fill(png, rect):
-    """The progress bar's fill, [0, 1]: the share of the bar's columns, along a row a quarter of its
-    height from the top (clear of its centred text), that have the fill's colour (the colour of a
-    full bar there, `fill_colour`)."""
+    """The progress bar's pixels along a row a quarter of its height from the top (clear of its
+    centred text), inside its frame."""
     rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int)
     x, y, w, h = rect
     row = rgb[y + max(2, h // 4), x + 2:x + w - 2]
@@ -125,6 +124,8 @@ def bar_fill(png, rect):
 
 
 def fill_share(row, colour):
+    """The bar's fill, [0, 1]: the share of that row with the fill's colour (`colour`: a full
+    bar's, read before the run)."""
     return float(numpy.mean(numpy.abs(row - colour).sum(axis=1) < 40))
 
 
