@@ -26,7 +26,6 @@ the run (minutes): "Cancelled." never comes within the wait. Screenshots in
 import json
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
