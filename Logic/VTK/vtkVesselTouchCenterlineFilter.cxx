@@ -137,8 +137,46 @@ int vtkVesselTouchCenterlineFilter::RequestData(vtkInformation*,
     vtkVesselTouchCenterlineFilter* filter;
     ~RemoteCancelScope() { this->filter->CloseRemoteCancel(); }
   } scope{ this };
+  // Project rule (Docs/CLIENT-SERVER.md, "Cancel on a pvserver"): the output of the last run that
+  // completed is kept (a shallow copy: the executive empties the output before each run), and
+  // after a cancelled run a run with that run's key (its parameters, restored by the panel after
+  // a remote cancel) returns it at once. Each rank keeps its own (its piece's).
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  const std::string key = this->RequestKey(inputVector);
+  if (output && this->LastRunCancelled && this->CompletedOutput && !key.empty() &&
+      key == this->CompletedRunKey)
+  {
+    this->RestoreOutput(this->CompletedOutput, output);
+    this->LastRunKey = key;
+    this->LastRunCancelled = false;
+    this->LastRunPrecomputed = true;
+    this->UpdateProgress(1.0);
+    return 1;
+  }
   this->OpenRemoteCancel();
-  return this->ExecuteRequest(inputVector, outputVector);
+  const int result = this->ExecuteRequest(inputVector, outputVector);
+  if (!this->LastRunCancelled && output)
+  {
+    this->CompletedOutput = vtkSmartPointer<vtkPolyData>::New();
+    this->CompletedOutput->ShallowCopy(output);
+    this->CompletedRunKey = key;
+  }
+  return result;
+}
+
+std::string vtkVesselTouchCenterlineFilter::RequestKey(vtkInformationVector** inputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  if (!input)
+  {
+    return std::string();
+  }
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  if (!scalars)
+  {
+    scalars = input->GetPointData()->GetScalars();
+  }
+  return scalars ? this->RunKey(input, scalars) : std::string();
 }
 
 void vtkVesselTouchCenterlineFilter::OpenRemoteCancel()
@@ -901,7 +939,15 @@ bool vtkVesselTouchCenterlineFilter::UsePrecomputed(const std::string& key, vtkP
   {
     return false;
   }
-  output->ShallowCopy(precomputed);
+  this->RestoreOutput(precomputed, output);
+  this->LastRunPrecomputed = true;
+  this->UpdateProgress(1.0);
+  return true;
+}
+
+void vtkVesselTouchCenterlineFilter::RestoreOutput(vtkPolyData* from, vtkPolyData* output)
+{
+  output->ShallowCopy(from);
   // The members the run would have set, from the field data it wrote.
   vtkFieldData* fd = output->GetFieldData();
   if (vtkDataArray* used = fd->GetArray("IntensityRangeUsed"))
@@ -917,9 +963,6 @@ bool vtkVesselTouchCenterlineFilter::UsePrecomputed(const std::string& key, vtkP
   {
     this->DownsampleFactorUsed = static_cast<int>(factor->GetComponent(0, 0));
   }
-  this->LastRunPrecomputed = true;
-  this->UpdateProgress(1.0);
-  return true;
 }
 
 void vtkVesselTouchCenterlineFilter::SetPrecomputedOutput(vtkPolyData* output, const char* runKey)

@@ -158,7 +158,10 @@ public:
   /// `output` (a run of a copy of this filter, whose GetLastRunKey() was `runKey`) is what the
   /// next run returns if its key is `runKey`; that run consumes it. Null forgets it.
   void SetPrecomputedOutput(vtkPolyData* output, const char* runKey);
-  /// Whether the last run returned a precomputed output instead of computing.
+  /// Whether the last run returned a precomputed output instead of computing: a background run's
+  /// (SetPrecomputedOutput) or the output a cancelled run kept from the run before it, when the
+  /// parameters are back to that run's (project rule: after a Cancel on a pvserver the panel
+  /// restores them, and every rank returns its kept piece of the output at once).
   vtkGetMacro(LastRunPrecomputed, bool);
   /// Whether the last run was cancelled (the cancel flag or AbortExecute): an empty output with
   /// ExtractionMessage "Cancelled.".
@@ -248,6 +251,11 @@ private:
   void ShareRemoteCancelPorts();
   /// Returns the precomputed output in `output` when `key` is its key (and forgets it).
   bool UsePrecomputed(const std::string& key, vtkPolyData* output);
+  /// `output` becomes `from` (a shallow copy), with the members a run sets read from its field
+  /// data (the range used, the message, the downsample factor).
+  void RestoreOutput(vtkPolyData* from, vtkPolyData* output);
+  /// This rank's key of the request (RunKey of its input), "" when the input has no scalars.
+  std::string RequestKey(vtkInformationVector** inputVector);
 
   bool AutomaticIntensityRange = true;
   double IntensityRangeUsed[2] = { 0.0, 0.0 };
@@ -274,6 +282,11 @@ private:
   std::string PrecomputedKey;
   bool LastRunPrecomputed = false;
   bool LastRunCancelled = false;
+  /// This rank's output of its last run that completed, and that run's key (RequestKey): after a
+  /// cancelled run, a run with that key returns it at once (project rule, Docs/CLIENT-SERVER.md
+  /// "Cancel on a pvserver": the panel restores the previous parameters after a remote cancel).
+  vtkSmartPointer<vtkPolyData> CompletedOutput;
+  std::string CompletedRunKey;
   std::string RemoteCancelToken;
   int RemoteCancelPort = 0;
 #ifndef __VTK_WRAP__

@@ -2,8 +2,10 @@
 
 #include "pqServer.h"
 
+#include "vtkClientServerStream.h"
 #include "vtkDataObjectTypes.h"
 #include "vtkSMPropertyHelper.h"
+#include "vtkSMSession.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkType.h"
@@ -24,8 +26,9 @@ bool pqVesselTouchCenterlineDelivery::isRemote(pqServer* server)
   return server && server->isRemote();
 }
 
-vtkSMProxy* pqVesselTouchCenterlineDelivery::deliver(
-  pqServer* server, vtkSMProxy* centerline, unsigned int& port)
+vtkSMProxy* pqVesselTouchCenterlineDelivery::deliver(pqServer* server,
+  vtkSMProxy* centerline,
+  unsigned int& port)
 {
   if (!centerline || !isRemote(server))
   {
@@ -58,6 +61,14 @@ void pqVesselTouchCenterlineDelivery::update()
   if (this->Reducer && this->Mover)
   {
     this->Reducer->UpdatePipeline();
+    // Both halves of the mover execute, or neither: the server's half re-executes when the
+    // centerline changed and sends it, but the client's half has no input here and would think
+    // itself up to date, leave the data in the session's socket and break the session at its
+    // next message ("Wrong tag", ParaView aborts; seen under Xvfb on a second Extract).
+    vtkClientServerStream stream;
+    stream << vtkClientServerStream::Invoke << VTKOBJECT(this->Mover) << "Modified"
+           << vtkClientServerStream::End;
+    this->Mover->GetSession()->ExecuteStream(this->Mover->GetLocation(), stream);
     this->Mover->UpdatePipeline();
   }
 }

@@ -1,6 +1,8 @@
 #include "pqVesselTouchCenterlineExtraction.h"
 
 #include "pqVesselTouchCenterlineOverlay.h"
+#include "pqVesselTouchRemoteCancel.h"
+#include "pqVesselTouchRemoteUpdateEvents.h"
 #include "pqVesselTouchVolumeCheck.h"
 #include "pqVesselTouchVolumeJob.h"
 
@@ -9,22 +11,30 @@
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
 #include "pqProgressManager.h"
+#include "pqServer.h"
+#include "pqServerResource.h"
 #include "pqView.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPVDataInformation.h"
+#include "vtkPVProgressHandler.h"
 #include "vtkPolyData.h"
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMPropertyHelper.h"
+#include "vtkSMSession.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMViewProxy.h"
 #include "vtkStringArray.h"
 #include "vtkVesselTouchCenterlineFilter.h"
+
+#include <QCoreApplication>
 
 #include <algorithm>
 
@@ -155,7 +165,13 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::extract(pqPipelineSource* v
 
 bool pqVesselTouchCenterlineExtraction::isRunning() const
 {
-  return this->Job != nullptr;
+  return this->Job != nullptr || this->Remote != nullptr;
+}
+
+void pqVesselTouchCenterlineExtraction::setRemoteUpdateEvents(
+  pqVesselTouchRemoteUpdateEvents* events)
+{
+  this->RemoteEvents = events;
 }
 
 void pqVesselTouchCenterlineExtraction::cancel(const QString& reason)
@@ -163,6 +179,10 @@ void pqVesselTouchCenterlineExtraction::cancel(const QString& reason)
   if (this->Job)
   {
     this->Job->cancel(reason);
+  }
+  if (this->Remote)
+  {
+    this->Remote->cancel(); // at once when the port is known, else at the next progress report
   }
 }
 
@@ -269,6 +289,7 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::run(const Request& request,
     return nullptr;
   }
   vtkSMProxy* proxy = filter->getProxy();
+  this->Previous = Parameters::of(filter);
   vtkSMPropertyHelper(proxy, "UseSeedPoint").Set(1);
   vtkSMPropertyHelper(proxy, "SeedPoint").Set(request.seed_mm, 3);
   const bool hasAutomatic = proxy->GetProperty("AutomaticIntensityRange") != nullptr;
@@ -299,9 +320,16 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::run(const Request& request,
       [this](const QString&, int percent) { Q_EMIT this->progress(percent); });
   }
   Q_EMIT this->progress(0);
-  vtkSMSourceProxy::SafeDownCast(proxy)->UpdatePipeline();
+  const bool remoteCancelled = this->updateRemotely(filter);
   QObject::disconnect(connection);
   filter->setModifiedState(pqProxy::UNMODIFIED);
+  if (remoteCancelled)
+  {
+    this->restorePrevious(filter, view);
+    Q_EMIT this->cancelled(QString());
+    return filter;
+  }
+  this->Completed = filter;
 
   this->readResult(filter);
   this->Result.background = local && local->GetLastRunPrecomputed();
@@ -320,6 +348,107 @@ pqPipelineSource* pqVesselTouchCenterlineExtraction::run(const Request& request,
   Q_EMIT this->progress(100);
   Q_EMIT this->finished(filter, this->Result.paths);
   return filter;
+}
+
+bool pqVesselTouchCenterlineExtraction::updateRemotely(pqPipelineSource* filter)
+{
+  auto* source = vtkSMSourceProxy::SafeDownCast(filter->getProxy());
+  pqServer* server = filter->getServer();
+  if (!server || !server->isRemote() || !source->GetProperty("RemoteCancelToken") || this->Remote)
+  {
+    source->UpdatePipeline(); // built in (or a nested call): ParaView's update
+    return false;
+  }
+  this->Remote = std::make_unique<pqVesselTouchRemoteCancel>(server->getResource().host(), source);
+  vtkPVProgressHandler* handler = server->session()->GetProgressHandler();
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(this);
+  observer->SetCallback([](vtkObject* caller, unsigned long, void* self, void*)
+    { static_cast<pqVesselTouchCenterlineExtraction*>(self)->onRemoteProgress(caller); });
+  const unsigned long tag = handler->AddObserver(vtkCommand::ProgressEvent, observer);
+  Q_EMIT this->remoteRunStarted();
+  // What ParaView posted before the run (its panels' queued updates, which may push properties
+  // to the server) runs now, as the event loop would have run it: inside the update the server
+  // must be sent nothing (pqVesselTouchRemoteUpdateEvents).
+  QCoreApplication::sendPostedEvents();
+  source->UpdatePipeline();
+  handler->RemoveObserver(tag);
+  const bool cancelled = this->Remote->acknowledged();
+  if (this->Remote->wanted() && !cancelled)
+  {
+    qWarning("VesselTouch: the Cancel did not reach the server (%s); the run went on to its end.",
+      qUtf8Printable(this->Remote->error()));
+  }
+  this->Remote.reset();
+  return cancelled;
+}
+
+void pqVesselTouchCenterlineExtraction::onRemoteProgress(vtkObject* caller)
+{
+  auto* handler = vtkPVProgressHandler::SafeDownCast(caller);
+  if (!handler || !this->Remote)
+  {
+    return;
+  }
+  const QString text =
+    QString::fromUtf8(handler->GetLastProgressText() ? handler->GetLastProgressText() : "");
+  const int percent = handler->GetLastProgress();
+  this->Remote->observeProgressText(text); // sends a Cancel asked before the port was known
+  Q_EMIT this->progress(percent);
+  Q_EMIT this->remoteProgress(percent, text);
+  if (this->RemoteEvents && !this->Remote->wanted())
+  {
+    this->RemoteEvents->processEvents(); // the Cancel's click, if any, calls cancel() in there
+  }
+}
+
+pqVesselTouchCenterlineExtraction::Parameters pqVesselTouchCenterlineExtraction::Parameters::of(
+  pqPipelineSource* filter)
+{
+  Parameters p;
+  p.filter = filter;
+  vtkSMProxy* proxy = filter->getProxy();
+  vtkSMPropertyHelper(proxy, "SeedPoint").Get(p.seed_mm, 3);
+  p.useSeed = vtkSMPropertyHelper(proxy, "UseSeedPoint").GetAsInt();
+  p.automatic = proxy->GetProperty("AutomaticIntensityRange")
+                  ? vtkSMPropertyHelper(proxy, "AutomaticIntensityRange").GetAsInt()
+                  : 0;
+  p.lower = vtkSMPropertyHelper(proxy, "LowerThreshold").GetAsDouble();
+  p.upper = vtkSMPropertyHelper(proxy, "UpperThreshold").GetAsDouble();
+  return p;
+}
+
+void pqVesselTouchCenterlineExtraction::Parameters::applyTo(pqPipelineSource* target) const
+{
+  vtkSMProxy* proxy = target->getProxy();
+  vtkSMPropertyHelper(proxy, "SeedPoint").Set(this->seed_mm, 3);
+  vtkSMPropertyHelper(proxy, "UseSeedPoint").Set(this->useSeed);
+  if (proxy->GetProperty("AutomaticIntensityRange"))
+  {
+    vtkSMPropertyHelper(proxy, "AutomaticIntensityRange").Set(this->automatic);
+  }
+  vtkSMPropertyHelper(proxy, "LowerThreshold").Set(this->lower);
+  vtkSMPropertyHelper(proxy, "UpperThreshold").Set(this->upper);
+  proxy->UpdateVTKObjects();
+}
+
+void pqVesselTouchCenterlineExtraction::restorePrevious(pqPipelineSource* filter, pqView* view)
+{
+  if (this->Completed != filter || this->Previous.filter != filter)
+  {
+    // No earlier run of this filter to go back to: it stays cancelled (an empty output).
+    this->Completed = nullptr;
+    this->Result = pqVesselTouchExtractionResult();
+    this->showInView(filter, view, false);
+    return;
+  }
+  // Every rank returns the output it kept from before the cancelled run (no computing:
+  // vtkVesselTouchCenterlineFilter's kept output, keyed on these parameters).
+  this->Previous.applyTo(filter);
+  vtkSMSourceProxy::SafeDownCast(filter->getProxy())->UpdatePipeline();
+  filter->setModifiedState(pqProxy::UNMODIFIED);
+  this->readResult(filter);
+  this->showInView(filter, view, this->Result.paths > 0);
 }
 
 const pqVesselTouchExtractionResult& pqVesselTouchCenterlineExtraction::readResult(

@@ -10,6 +10,13 @@
 // output, keyed on the input's voxels and the parameters): state files, Python and the Pipeline
 // Browser see the filter as after extract(). Until then nothing of the pipeline, the view or the
 // session changes.
+//
+// With remote data (a pvserver) the pipeline's filter runs synchronously, as in ParaView, and is
+// cancellable (issue 19 item 1): the run's progress reports from the server give progress() and
+// remoteProgress() and run the events the panel's Cancel needs (setRemoteUpdateEvents); cancel()
+// sends the filter's token over the side channel (pqVesselTouchRemoteCancel). After a cancel the
+// filter gets the previous run's parameters back and returns that run's output, which its ranks
+// kept (vtkVesselTouchCenterlineFilter's kept output): the previous centerline stays.
 #ifndef pqVesselTouchCenterlineExtraction_h
 #define pqVesselTouchCenterlineExtraction_h
 
@@ -21,10 +28,14 @@
 #include <QPointer>
 #include <QString>
 
+#include <memory>
 #include <string>
 
 class pqVesselTouchCenterlineOverlay;
+class pqVesselTouchRemoteCancel;
+class pqVesselTouchRemoteUpdateEvents;
 class pqVesselTouchVolumeJob;
+class vtkObject;
 class vtkPolyData;
 
 struct pqVesselTouchExtractionResult
@@ -74,9 +85,15 @@ public:
     double upperThreshold,
     pqView* view);
   /// Stops the running start() at its next check point: cancelled() follows; the pipeline, the
-  /// view and the session keep the previous centerline.
+  /// view and the session keep the previous centerline. During a remote run (called from a click
+  /// that setRemoteUpdateEvents let through): sends the cancel to the server.
   void cancel(const QString& reason = QString());
   bool isRunning() const;
+  /// Whether a remote run is under way (the client inside the update).
+  bool isRunningRemotely() const { return this->Remote != nullptr; }
+  /// Runs the events the panel needs (its Cancel) at each progress report of a remote run; not
+  /// owned, null: none (the client answers only after the run).
+  void setRemoteUpdateEvents(pqVesselTouchRemoteUpdateEvents* events);
 
   /// The filter of the last run, null before.
   pqPipelineSource* centerline() const;
@@ -103,6 +120,10 @@ Q_SIGNALS:
   void failed(const QString& reason);
   /// A start() was cancelled (Cancel, the volume deleted or changed): `reason` says which.
   void cancelled(const QString& reason);
+  /// A remote run began: the client waits in the update until it ends (Cancel works meanwhile).
+  void remoteRunStarted();
+  /// A progress report of the remote run: percent and the server's text.
+  void remoteProgress(int percent, const QString& text);
 
 private:
   struct Request
@@ -126,10 +147,32 @@ private:
   /// is `key`): the filter's properties, its update, the result shown.
   pqPipelineSource* run(const Request& request, vtkPolyData* precomputed, const std::string& key);
   void onJobFinished(pqVesselTouchVolumeJob* job);
+  /// A progress report of the server during a remote run (vtkPVProgressHandler's ProgressEvent).
+  void onRemoteProgress(vtkObject* handler);
+  /// The remote update, cancellable; true when it was cancelled.
+  bool updateRemotely(pqPipelineSource* filter);
+  /// After a remote cancel: the previous run's parameters back on `filter` and its kept output.
+  void restorePrevious(pqPipelineSource* filter, pqView* view);
 
   QPointer<pqPipelineSource> Centerline;
   QPointer<pqVesselTouchVolumeJob> Job;
   Request Running;
+  /// The filter's run parameters as this run found them (restored after a remote cancel).
+  struct Parameters
+  {
+    QPointer<pqPipelineSource> filter;
+    double seed_mm[3] = { 0.0, 0.0, 0.0 };
+    int useSeed = 0;
+    int automatic = 1;
+    double lower = 0.0, upper = 0.0;
+    static Parameters of(pqPipelineSource* filter);
+    void applyTo(pqPipelineSource* filter) const;
+  };
+  Parameters Previous;
+  /// The filter's last run gave its output (not cancelled, not failed on the input).
+  QPointer<pqPipelineSource> Completed;
+  std::unique_ptr<pqVesselTouchRemoteCancel> Remote;
+  QPointer<pqVesselTouchRemoteUpdateEvents> RemoteEvents;
   QElapsedTimer Clock;
   pqVesselTouchCenterlineOverlay* Overlay = nullptr;
   pqVesselTouchExtractionResult Result;

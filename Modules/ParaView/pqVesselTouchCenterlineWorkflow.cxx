@@ -4,6 +4,7 @@
 #include "pqVesselTouchCenterlineExtraction.h"
 #include "pqVesselTouchCenterlineOverlay.h"
 #include "pqVesselTouchRegionPreview.h"
+#include "pqVesselTouchRemoteUpdateEvents.h"
 #include "pqVesselTouchSeedPicker.h"
 #include "pqVesselTouchVolumeCheck.h"
 #include "pqVesselTouchVolumeChooser.h"
@@ -121,6 +122,26 @@ pqVesselTouchCenterlineWorkflow::pqVesselTouchCenterlineWorkflow(Ui::pqVesselTou
     &QPushButton::clicked,
     this,
     &pqVesselTouchCenterlineWorkflow::cancelRuns);
+  // A remote run (a pvserver's ranks) keeps the client inside the update: at each progress report
+  // the panel repaints and its Cancel takes clicks, nothing else (pqVesselTouchRemoteUpdateEvents).
+  QWidget* runArea = this->Ui.cancelButton->parentWidget();
+  while (runArea && runArea->parentWidget() &&
+         !(runArea->isAncestorOf(this->Ui.extractMessage) &&
+           runArea->isAncestorOf(this->Ui.extractProgress)))
+  {
+    runArea = runArea->parentWidget();
+  }
+  this->Extraction->setRemoteUpdateEvents(
+    new pqVesselTouchRemoteUpdateEvents(runArea, this->Ui.cancelButton, this));
+  QObject::connect(this->Extraction,
+    &pqVesselTouchCenterlineExtraction::remoteRunStarted,
+    this,
+    [this]()
+    {
+      this->setExtractMessage(
+        tr("Extracting on the server: the view waits for it; Cancel stops it."), false);
+      this->updateRunState();
+    });
   QObject::connect(this->Ui.previewButton,
     &QPushButton::toggled,
     this,

@@ -411,11 +411,17 @@ QString pqVesselTouchTestDriver::run(const QString& line)
     auto* workflow =
       this->Panel ? this->Panel->findChild<pqVesselTouchCenterlineWorkflow*>() : nullptr;
     const QStringList words = line.split(' ', Qt::SkipEmptyParts);
-    if (!picker || !workflow || words.size() != 4)
+    if (!picker || !workflow || (words.size() != 4 && words.size() != 5))
     {
-      return QString("seed needs X Y Z and the panel's seed picker");
+      return QString("seed needs X Y Z [VALUE] and the panel's seed picker");
     }
     const double point[3] = { words[1].toDouble(), words[2].toDouble(), words[3].toDouble() };
+    if (words.size() == 5)
+    {
+      // A volume on a pvserver has no voxels here: the test gives the seed's value.
+      Q_EMIT picker->seedPicked(point[0], point[1], point[2], words[4].toDouble());
+      return QString();
+    }
     vtkImageData* image = pqVesselTouchVolumeJob::localImage(workflow->currentVolume());
     const vtkIdType id = image ? image->FindPoint(point[0], point[1], point[2]) : -1;
     if (id < 0 || !image->GetPointData()->GetScalars())
