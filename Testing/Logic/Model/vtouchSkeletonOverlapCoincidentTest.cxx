@@ -81,25 +81,10 @@ TEST(SkeletonOverlap, ACentreBothPiecesCodedAtOnePositionIsKeptWhateverItsClippe
   coded.paths.push_back(path(0, branchCentres()));
   // Every rank sends its owned points and its overlap band (SkeletonClipper), and the first rank
   // stitches them with the filter's settings (DistributedCenterline::gatherAndStitch).
-  std::vector<SkeletonFragment> all;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (SkeletonFragment& f : SkeletonClipper(ownership, frame, r, kOverlapBandVoxels).clip(coded))
-    {
-      all.push_back(std::move(f));
-    }
-  }
-  ASSERT_EQ(all.size(), 2u); // ranks 0 and 1
-  const double voxel_mm = 1.50009;
-  SkeletonStitcher stitcher;
-  stitcher.joinTolerance_mm = 2.0 * voxel_mm;
-  stitcher.ownership = ownership;
-  stitcher.frame = frame;
-  stitcher.copyReach_mm = kCopyReachVoxels * voxel_mm;
-  stitcher.coverageReach_mm = kCopyReachVoxels * voxel_mm;
-  stitcher.coincidentPoint_mm = kCoincidentPointVoxels * voxel_mm;
   StitchReport report;
-  const QSkeleton s = stitcher.stitch(all, report);
+  std::vector<std::size_t> sent;
+  const QSkeleton s = clipAndStitchAsTheFilter(coded, ownership, frame, 4, 1.50009, report, &sent);
+  ASSERT_EQ(sent.size(), 2u); // ranks 0 and 1
   EXPECT_EQ(s.validate(), "");
   ASSERT_EQ(s.paths.size(), 1u);
   EXPECT_EQ(report.cutEndsJoined, 1);
@@ -121,7 +106,7 @@ TEST(SkeletonOverlap, ACentreBothPiecesCodedAtOnePositionIsKeptWhateverItsClippe
   }
   // Every point sent by both ranks was kept once: the band's copies are the duplicates.
   EXPECT_EQ(report.duplicatesRemoved,
-    static_cast<int>(all[0].points.size() + all[1].points.size() - expected.size()));
+    static_cast<int>(sent[0] + sent[1] - expected.size()));
 }
 
 } // namespace

@@ -104,24 +104,8 @@ TEST(SkeletonOverlap, AJunctionCentreEveryPieceCodedOnAnEdgeOfFourPiecesIsKeptOn
   attach(coded, 1, Junction::End::Head, 0, kJunction);
   // Every rank coded these centres; each sends its owned points and its overlap band, and the
   // first rank stitches them with the filter's settings (DistributedCenterline::gatherAndStitch).
-  std::vector<SkeletonFragment> all;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (SkeletonFragment& f : SkeletonClipper(ownership, frame, r, kOverlapBandVoxels).clip(coded))
-    {
-      all.push_back(std::move(f));
-    }
-  }
-  const double voxel_mm = 1.50009;
-  SkeletonStitcher stitcher;
-  stitcher.joinTolerance_mm = 2.0 * voxel_mm;
-  stitcher.ownership = ownership;
-  stitcher.frame = frame;
-  stitcher.copyReach_mm = kCopyReachVoxels * voxel_mm;
-  stitcher.coverageReach_mm = kCopyReachVoxels * voxel_mm;
-  stitcher.coincidentPoint_mm = kCoincidentPointVoxels * voxel_mm;
   StitchReport report;
-  const QSkeleton s = stitcher.stitch(all, report);
+  const QSkeleton s = clipAndStitchAsTheFilter(coded, ownership, frame, 4, 1.50009, report);
   EXPECT_EQ(s.validate(), "");
   EXPECT_EQ(report.cutEndsUnmatched, 0);
   EXPECT_EQ(report.pointsDropped, 0);

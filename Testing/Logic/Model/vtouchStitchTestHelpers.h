@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 namespace vtouch_test
 {
@@ -76,6 +77,45 @@ inline QSkeleton clipAndStitch(const std::vector<QSkeleton>& perPiece,
   SkeletonStitcher stitcher;
   stitcher.joinTolerance_mm = 1.5;
   stitcher.ownership = ownership;
+  return stitcher.stitch(all, report);
+}
+
+/// Every piece of `pieces` sends the part of one coded skeleton it owns plus its overlap band
+/// (SkeletonClipper in `frame`), and the first rank stitches them with the filter's settings
+/// (DistributedCenterline::gatherAndStitch, reaches in voxels of `voxel_mm`): the pieces coded
+/// the same centres, so this is the stitch of a distributed run whose coders agree.
+/// `fragmentPoints`, if given, receives each sent fragment's point count.
+inline QSkeleton clipAndStitchAsTheFilter(const QSkeleton& coded,
+  const PieceOwnership& ownership,
+  const IndexFrame& frame,
+  int pieces,
+  double voxel_mm,
+  StitchReport& report,
+  std::vector<std::size_t>* fragmentPoints = nullptr)
+{
+  std::vector<SkeletonFragment> all;
+  for (int r = 0; r < pieces; ++r)
+  {
+    for (SkeletonFragment& f : SkeletonClipper(ownership, frame, r, kOverlapBandVoxels).clip(coded))
+    {
+      all.push_back(std::move(f));
+    }
+  }
+  if (fragmentPoints)
+  {
+    fragmentPoints->clear();
+    for (const SkeletonFragment& f : all)
+    {
+      fragmentPoints->push_back(f.points.size());
+    }
+  }
+  SkeletonStitcher stitcher;
+  stitcher.joinTolerance_mm = 2.0 * voxel_mm;
+  stitcher.ownership = ownership;
+  stitcher.frame = frame;
+  stitcher.copyReach_mm = kCopyReachVoxels * voxel_mm;
+  stitcher.coverageReach_mm = kCopyReachVoxels * voxel_mm;
+  stitcher.coincidentPoint_mm = kCoincidentPointVoxels * voxel_mm;
   return stitcher.stitch(all, report);
 }
 

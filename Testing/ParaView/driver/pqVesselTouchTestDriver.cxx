@@ -121,6 +121,22 @@ QJsonObject describe(const QWidget* widget)
   {
     entry.insert("value", bar->value());
     entry.insert("text", bar->text());
+    // How many values strictly between empty and full the bar took since it was first described:
+    // a test reads it after an update during which the driver cannot answer (a remote run), and
+    // a screenshot may miss a fill that lasts one progress report.
+    auto* counted = const_cast<QProgressBar*>(bar);
+    if (!counted->property("vtouchTestCounted").toBool())
+    {
+      counted->setProperty("vtouchTestCounted", true);
+      QObject::connect(counted, &QProgressBar::valueChanged, counted, [counted](int value) {
+        if (value > counted->minimum() && value < counted->maximum())
+        {
+          counted->setProperty(
+            "vtouchTestPartialValues", counted->property("vtouchTestPartialValues").toInt() + 1);
+        }
+      });
+    }
+    entry.insert("partial_values", bar->property("vtouchTestPartialValues").toInt());
   }
   else if (const auto* group = qobject_cast<const QGroupBox*>(widget))
   {

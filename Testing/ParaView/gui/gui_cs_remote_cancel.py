@@ -10,9 +10,10 @@ The seed is the root. Then:
   centerline); the filter's DownsampleFactor is then set to 1 (full resolution);
 - Extract again, clicked with xdotool, with the run test_cs_remote_cancel.py cancels (Automatic
   off, the range from the tissue's level, LONG_RUN_LOWER, up: minutes uncancelled). The client
-  waits inside the update, so the driver cannot answer meanwhile: the test reads the screen. The
-  panel's progress bar (full after the previous run) shows the server's progress: a fill strictly
-  between empty and full. Then a real click on the panel's Cancel;
+  waits inside the update, so the driver cannot answer meanwhile. A real click on the panel's
+  Cancel follows at once (the client handles input only at the server's progress reports: the
+  first report handles it); the driver counts the panel's progress bar values strictly between
+  empty and full meanwhile (the server's progress shown), read after the run;
 - the panel then says "Cancelled." beside Extract, the pipeline's filter has the previous
   centerline's paths again (its ranks kept that output: no re-run) and the view still draws it in
   orange;
@@ -37,8 +38,6 @@ from gui_pixels import orange_pixels  # noqa: E402
 from vtouch_pvserver import ParallelServer, port_is_free, wait_until  # noqa: E402
 from vtouch_testing import Check  # noqa: E402
 
-import numpy  # noqa: E402
-from PIL import Image  # noqa: E402
 
 CHECK = Check('GUI remote cancel')
 check = CHECK.true
@@ -46,7 +45,6 @@ check = CHECK.true
 # full resolution (minutes on 2 ranks).
 LONG_RUN_LOWER = 380.0
 # Bounds of the waits (not asserted times): the driver answers only once the update returned.
-PROGRESS_WAIT_S = 90.0
 CANCEL_WAIT_S = 90.0
 
 SCENE = """
@@ -113,21 +111,6 @@ def click_widget(gui, rect):
     gui.xdotool("click", 1)
 
 
-def bar_fill(png, rect):
-    """The progress bar's pixels along a row a quarter of its height from the top (clear of its
-    centred text), inside its frame."""
-    rgb = numpy.asarray(Image.open(png).convert("RGB")).astype(int)
-    x, y, w, h = rect
-    row = rgb[y + max(2, h // 4), x + 2:x + w - 2]
-    return row
-
-
-def fill_share(row, colour):
-    """The bar's fill, [0, 1]: the share of that row with the fill's colour (`colour`: a full
-    bar's, read before the run)."""
-    return float(numpy.mean(numpy.abs(row - colour).sum(axis=1) < 40))
-
-
 def main():
     folder = tempfile.mkdtemp(prefix="vesseltouch-gui-cs-cancel-")
     server = ParallelServer(ranks=2)
@@ -170,28 +153,23 @@ def main():
         gui.run("check", "automaticRange", 0)
         gui.run("set", "lowerThreshold", LONG_RUN_LOWER)
         gui.run("state")
-        bar = gui.widget("extractProgress")["rect"]
+        partial_before = gui.widget("extractProgress").get("partial_values", 0)
         cancel_rect = gui.widget("cancelButton")["rect"]
-        full_png = gui.screenshot(os.path.join(gui.work, "screen_before_long_run.png"))
-        full_row = bar_fill(full_png, bar)
-        colour = full_row[len(full_row) // 8]  # the full bar's fill, left of its text
+        gui.screenshot(os.path.join(gui.work, "screen_before_long_run.png"))
         click_widget(gui, gui.widget("extractButton")["rect"])
-        shares = []
-        deadline = time.time() + PROGRESS_WAIT_S
-        seen = False
-        index = 0
-        while time.time() < deadline and not seen:
-            time.sleep(0.1)
-            index += 1
-            png = gui.screenshot(os.path.join(gui.work, "screen_running_%02d.png" % index))
-            share = fill_share(bar_fill(png, bar), colour) if png else -1.0
-            shares.append(round(share, 3))
-            seen = 0.01 < share < 0.95
-        print("progress bar fill while the server runs: %s" % shares)
-        check(seen, "the panel's progress bar shows the server's progress (fills %s)" % shares)
-        running_png = gui.screenshot(os.path.join(gui.work, "screen_running.png"))
+        # Cancel is clicked at once: the client handles input only at the server's progress
+        # reports, and the server reports none while its ranks code locally (tens of seconds
+        # here), so a click after the first report can wait for the run's end (the departure in
+        # Docs/CLIENT-SERVER.md, "Cancel on a pvserver"). Clicked now, it is handled at the first
+        # report, during the ranks' region rounds, which report at every exchange.
+        time.sleep(0.3)
         clicked_at = time.monotonic()
         click_widget(gui, cancel_rect)
+        # Screenshots while the server runs (looked at, not asserted: under load the cancel can
+        # end the run before one shows the bar's fill); the driver counts the bar's values.
+        for index in range(3):
+            gui.screenshot(os.path.join(gui.work, "screen_running_%02d.png" % index))
+        running_png = gui.screenshot(os.path.join(gui.work, "screen_running.png"))
         said = gui.wait_until(lambda s: label(gui, "extractMessage").startswith("Cancelled"),
                               seconds=CANCEL_WAIT_S, reply_seconds=CANCEL_WAIT_S)
         answered_after = time.monotonic() - clicked_at
@@ -202,6 +180,10 @@ def main():
         check(said and text == "Cancelled.", "the panel says 'Cancelled.' beside Extract (%r)"
               % text)
         check(not gui.widget("cancelButton").get("enabled", True), "Cancel is disabled again")
+        partial_after = gui.widget("extractProgress").get("partial_values", 0)
+        check(partial_after > partial_before,
+              "the panel's progress bar showed the server's progress during the run (%d values "
+              "between empty and full, %d before)" % (partial_after, partial_before))
         paths_after, kept = python_value(gui, PATHS, "paths_after") or [None, None]
         check(paths_after == paths_before, "the pipeline's filter has the previous centerline's "
               "paths again (%s, before %s)" % (paths_after, paths_before))
