@@ -13,6 +13,7 @@
 #include "vtouchRangeForeground.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchSeedComponentSplit.h"
+#include "vtouchBranchEntry.h"
 #include "vtouchSkeletonPathSmoothing.h"
 #include "vtouchVolumeSkeletonizer.h"
 
@@ -529,6 +530,10 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
       removed->InsertNextValue(refined.pruned.pathsRemoved);
       output->GetFieldData()->AddArray(removed);
     }
+    if (!this->DeferBranchEntries)
+    {
+      this->PlaceBranchEntries(skeleton);
+    }
     vtouch::qSkeletonToPolyData(skeleton, output);
     // Which scale the default (automatic) DownsampleFactor chose: 1 = full resolution.
     vtkNew<vtkIntArray> used;
@@ -787,7 +792,11 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   struct DeferReset
   {
     vtkVesselTouchCenterlineFilter* filter;
-    ~DeferReset() { this->filter->DeferPathSmoothing = this->filter->DeferRawRefinement = false; }
+    ~DeferReset()
+    {
+      this->filter->DeferPathSmoothing = this->filter->DeferRawRefinement = false;
+      this->filter->DeferBranchEntries = false;
+    }
   } deferReset{ this };
   if (this->DeferPathSmoothing)
   {
@@ -826,6 +835,9 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
         cancelRequested);
     };
   }
+  // The single run's last step on the whole network: each branch's entry into its parent.
+  this->DeferBranchEntries = true;
+  hooks.beforeFill = [this](vtouch::QSkeleton& stitched) { this->PlaceBranchEntries(stitched); };
   vtouch::DistributedRequest::Outcome outcome;
   try
   {
@@ -886,6 +898,15 @@ void vtkVesselTouchCenterlineFilter::AddRestOfRegion(vtkInformationVector** inpu
   if (other->GetNumberOfLines() > 0 && vtouch::PolyDataToQSkeleton().convert(other, more, error))
   {
     skeleton = vtouch::SeedComponentSplit::appended(skeleton, more);
+  }
+}
+
+void vtkVesselTouchCenterlineFilter::PlaceBranchEntries(vtouch::QSkeleton& skeleton) const
+{
+  // Not when the positions are kept as coded (a negative SmoothingWindow).
+  if (this->SmoothingWindow >= 0.0)
+  {
+    vtouch::placeBranchEntries(skeleton);
   }
 }
 

@@ -231,6 +231,10 @@ private:
     vtkImageData* input,
     const vtouch::CandidateRegionOutcome& rest,
     vtouch::QSkeleton& skeleton);
+  /// The network's last step, on the whole network (the single run's, or the first rank's
+  /// stitched one): each branch's entry into its parent on the branch's own axis
+  /// (vtouch::placeBranchEntries), unless the positions are kept (a negative SmoothingWindow).
+  void PlaceBranchEntries(vtouch::QSkeleton& skeleton) const;
 #endif
   /// Whether this run is piece `piece` of a distributed extraction over `pieces` ranks.
   bool Distributed(int piece, int pieces) const;
@@ -309,6 +313,10 @@ private:
   /// runs on the piece: the piece skips the raw path's refinement (RawSkeletonRefinement); the
   /// first rank runs it on the whole stitched paths (vtouch::DistributedWholePathRefinement).
   bool DeferRawRefinement = false;
+  /// Set by RequestDistributed while ExtractVolume runs on the piece: the piece's paths keep
+  /// their coded entries into their parents; the first rank places them on the stitched whole
+  /// network (PlaceBranchEntries, the single run's last step).
+  bool DeferBranchEntries = false;
   /// The distributed run's pipeline stamps on this rank (issue 19 item 4: where the time goes).
   vtouch::RankTimeline DistributedTimeline;
 #endif

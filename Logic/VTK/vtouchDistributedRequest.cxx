@@ -159,6 +159,10 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
     stitchedError = hooks.afterStitchCollective(
       input, whole, result.skeleton.empty() ? nullptr : &result.skeleton, output->GetFieldData());
   }
+  if (!result.skeleton.empty() && hooks.beforeFill)
+  {
+    hooks.beforeFill(result.skeleton);
+  }
   if (!result.skeleton.empty())
   {
     // (An empty skeleton's zero-tuple topology arrays would make the client lose every field

@@ -80,6 +80,10 @@ public:
       QSkeleton* stitched,
       vtkFieldData* report)>
       afterStitchCollective;
+    /// Optional: runs on the first rank on the stitched skeleton (not empty) after
+    /// afterStitchCollective, right before `fill` (where the single run's last step runs: each
+    /// branch's entry into its parent, placeBranchEntries).
+    std::function<void(QSkeleton& stitched)> beforeFill;
   };
   /// What the run says; the filter reports it with its own macros.
   struct Outcome

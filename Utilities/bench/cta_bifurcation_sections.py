@@ -14,8 +14,10 @@ of the in-plane distance map, spacing honoured, with a prominence of at least 0.
 in-plane voxel is 0.88 mm, so a dent of the digital contour does not make a lobe; project rule),
 the largest inscribed disc's radius, the distance of each VMTK line and of the extraction from
 the section's centroid, and the two VMTK lines' distance apart. Then the upper bound the two-lobe
-rule sets on "reference within 1 mm": where the section is one lobe, the network has one line,
-which is within 1 mm of both reference lines only where they are less than 2 mm apart.
+rule sets on "reference within 1 mm": where the section is one lobe, a network with one line
+there is within 1 mm of both reference lines only where they are less than 2 mm apart (the
+branch entries of Docs/CENTERLINES.md, Method step 9, carry the branch's axis on into the lobe,
+as VMTK's lines run, and pass that bound).
 The picture: the sections (intensity, the range's contour) with the reference lines and the
 extraction, over a strip of the coronal MIP.
 """
@@ -170,8 +172,9 @@ def main():
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     draw(rows, args.out, "Raw CTA, the aorta's lowest centimetre in coronal sections j (voxel "
          "rows, 0.88 mm; i across, k up): the lumen (orange: the range [%.0f, %.0f]) is two lobes "
-         "up to j %d, one flattened lobe above; VMTK's two lines run apart in it, VesselCenterline "
-         "(red) has one trunk: reference within 1 mm %.3f, bound %.3f"
+         "up to j %d, one flattened lobe above; VMTK's two lines run apart in it, and so does "
+         "VesselCenterline (red: the left iliac's axis carried on to the aorta's, Method step 9): "
+         "reference within 1 mm %.3f (at most %.3f branching where the lumen splits)"
          % (record["field.IntensityRangeUsed"][0], record["field.IntensityRangeUsed"][1],
             top_split, cover, 1.0 - pairs / len(reference)))
     print("wrote", args.out)

@@ -1,4 +1,5 @@
 // Real data: the VMTK aorta level set against VMTK's reference centerline, and the raw CTA.
+#include "vtouchBranchEntry.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchVesselCandidateRegion.h"
 #include "vtouchVoxelCodingSkeletonFilter.h"
@@ -217,6 +218,8 @@ TEST(VoxelCodingSkeletonFilter, RawAortaCtaFromASeedAloneCoversTheVmtkReference)
   tips.backgroundNoise = region.range.backgroundNoise;
   const RawSkeletonRefinement refined =
     RawSkeletonRefinement::apply(s, inRange, geometry, 0.0, &tips);
+  // Last, each branch's entry into its parent on its own axis (placeBranchEntries).
+  const BranchEntryReport entries = placeBranchEntries(s);
   EXPECT_EQ(s.validate(), "");
   const test::Topology t = test::topology(s, 5.0);
   const Comparison c = compare(s, reference);
@@ -225,15 +228,17 @@ TEST(VoxelCodingSkeletonFilter, RawAortaCtaFromASeedAloneCoversTheVmtkReference)
             << s.paths.size() << ", ends " << t.endPoints << ", bifurcations " << t.bifurcations
             << "; re-traced " << refined.tracked.stretchesTracked << ", cut "
             << refined.tracked.stretchesCut << ", removed " << refined.pruned.pathsRemoved
-            << ", turned dim tips " << refined.tips.tipsTrimmed << "; reference within 1 mm "
-            << c.coveredWithin1mm << "\n";
-  // Issue 16 asks 0.95 within 1 mm; reached 0.9169 (the floor below). The misses: VMTK's two
-  // centerlines run 2-7 mm apart over the aorta's lowest centimetre above the iliac carina (28 of
-  // the 409 reference points), where the lumen's cross-section is already one flattened lobe: a
-  // network that branches where the section splits into two lobes has one line there and reaches
-  // at most 0.924 (Utilities/bench/cta_bifurcation_sections.py); the seed's own end and the
-  // reference's cut top end miss by 1.0-1.4 mm. See Docs/CENTERLINES.md, "Raw angiograms".
-  EXPECT_GE(c.coveredWithin1mm, 0.915);
+            << ", turned dim tips " << refined.tips.tipsTrimmed << ", branch entries placed "
+            << entries.junctionsMoved << "; reference within 1 mm " << c.coveredWithin1mm << "\n";
+  // Issue 16 asks 0.95 within 1 mm. Without the branch entries 0.9169: over the aorta's lowest
+  // centimetre above the iliac carina the lumen is one flattened lobe, the coder's band there is
+  // one cluster, and the left iliac's path crossed it sideways to the trunk 3 rows above the
+  // carina while VMTK's line runs on along the iliac's axis to the aorta's (28 reference points
+  // 1-3 mm off; Utilities/bench/cta_bifurcation_sections.py). With the iliac's axis carried on to
+  // the aorta's: 0.985; the misses left are the seed's own end and the reference's cut ends
+  // (1.0-1.3 mm). See Docs/CENTERLINES.md, "Raw angiograms", step 7.
+  EXPECT_GE(c.coveredWithin1mm, 0.95);
+  EXPECT_GE(entries.junctionsMoved, 1u);
   EXPECT_EQ(t.loops, 0); // a tree: no false ring through tissue at vessel intensity
 }
 
