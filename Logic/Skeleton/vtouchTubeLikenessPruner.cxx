@@ -487,8 +487,20 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
         firstChildPoint = std::min(firstChildPoint, j.parentPoint);
       }
     }
-    // The end back to the last two consecutive tube-like points, when what lies beyond them is
-    // mostly not tube-like.
+    // The end back to the last run of endAnchorTubePoints consecutive tube-like points, when what
+    // lies beyond it is mostly not tube-like.
+    const int anchor = std::max(1, s.endAnchorTubePoints);
+    const auto tubeRun = [&st, anchor](int first)
+    {
+      for (int q = first; q < first + anchor; ++q)
+      {
+        if (st[static_cast<std::size_t>(q)] != Status::Tube)
+        {
+          return false;
+        }
+      }
+      return true;
+    };
     const auto beyond = [&st](int from, int to)
     {
       int judged = 0, notTube = 0;
@@ -501,14 +513,13 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
     };
     if (path.tail.junction < 0)
     {
-      int k = n - 1;
-      while (k >= 1 && !(st[static_cast<std::size_t>(k)] == Status::Tube &&
-                         st[static_cast<std::size_t>(k - 1)] == Status::Tube))
+      int k = n - 1; // the run's outer point: points k - anchor + 1 .. k are tube-like
+      while (k >= anchor - 1 && !tubeRun(k - anchor + 1))
       {
         --k;
       }
       const auto [judged, notTube] = beyond(k + 1, n);
-      if (k >= 1 && k > lastChildPoint && notTube >= s.minimumTrimPoints &&
+      if (k >= anchor - 1 && k >= 1 && k > lastChildPoint && notTube >= s.minimumTrimPoints &&
           static_cast<double>(notTube) >= s.notTubeFraction * static_cast<double>(judged))
       {
         result.pointsRemoved += static_cast<std::size_t>(n - 1 - k);
@@ -520,14 +531,14 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
     const int m = static_cast<int>(path.points.size());
     if (path.head.junction < 0)
     {
-      int k = 0;
-      while (k < m - 1 && !(st[static_cast<std::size_t>(k)] == Status::Tube &&
-                            st[static_cast<std::size_t>(k + 1)] == Status::Tube))
+      int k = 0; // the run's outer point: points k .. k + anchor - 1 are tube-like
+      while (k + anchor - 1 < m && !tubeRun(k))
       {
         ++k;
       }
       const auto [judged, notTube] = beyond(0, k);
-      if (k < m - 1 && k > 0 && k < firstChildPoint && notTube >= s.minimumTrimPoints &&
+      if (k + anchor - 1 < m && k + 1 < m && k > 0 && k < firstChildPoint &&
+          notTube >= s.minimumTrimPoints &&
           static_cast<double>(notTube) >= s.notTubeFraction * static_cast<double>(judged))
       {
         path.points.erase(path.points.begin(), path.points.begin() + k);

@@ -62,6 +62,11 @@ public:
     double notTubeFraction = 0.5; ///< a path goes when this share of its judged points is not tube
     int minimumJudgedPoints = 2;  ///< fewer judged points: unjudged (goes with a plate parent)
     int minimumTrimPoints = 3;    ///< a free end is trimmed when this many end points are not tube
+    /// A free end onto a plate goes back to the last run of this many consecutive tube-like
+    /// points (step 4's "a vessel on a path has a clean run of >= 3 points"): two tube-like
+    /// points inside the clutter, where the path runs along the plate's face, do not anchor it
+    /// (u128 seed 9 noise 20, session 18: 9 points up to 7.6 voxels off the vessel). Was 2.
+    int endAnchorTubePoints = 3;
     /// A branch ending free that is shorter than this many of its own largest section radii
     /// (beyond the junction's zone) is a bulge (a blob, a knob) and goes; 0 = off. The coder's
     /// spur length (MinimumBranchLength, 2.5 radii of the vessel joined) on the branch's own. A
