@@ -669,6 +669,14 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     { this->UpdateProgress(kPieceProgressShare + (0.95 - kPieceProgressShare) * fraction); });
   hooks.stitchProgress = [this, &stitchReports](double fraction)
   {
+    if (this->RemoteCancel && stitchReports.highest() == 0.0 && fraction == 0.0)
+    {
+      // The stage in the text ParaView carries to the client (its progress bar shows it; the
+      // port stays first: RemoteCancel and the panel find it anywhere in the text).
+      const std::string text =
+        "VesselCenterline: cancel port " + std::to_string(this->RemoteCancelPort) + " (stitching)";
+      this->SetProgressText(text.c_str());
+    }
     stitchReports.offer(fraction, vtouch::steadyNow_s());
     return !this->CancelRequested();
   };

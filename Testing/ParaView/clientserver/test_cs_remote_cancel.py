@@ -16,7 +16,8 @@ the vessel mask, coded at full resolution with DistributedExtraction on (minutes
   progress event cancels it;
 - cancelled in the first rank's stitch (h18q: the long silent stretch of this run, 74 of its
   85 s at 128^3 before the stitch had check points): the server's progress keeps coming during
-  the stitch (at least --stitch-reports reports past the pieces' share, 50 %), a cancel at the
+  the stitch (at least --stitch-reports reports whose text names it, past the pieces' share,
+  50 %), a cancel at the
   last of them stops the run ("Cancelled.", every rank: the next step works), and no gap between
   two progress reports the client saw (or the update's start and end) is longer than
   MAX_GAP_SHARE of the run (counted on the client's reports, the bound relative to the run);
@@ -105,20 +106,20 @@ def check_stitch_cancel(volume, stitch_reports):
 
     def in_stitch(centerline):
         def on_progress(fraction, text):
-            seen.append((time.monotonic(), fraction))
-            return sum(1 for _, f in seen if f > 0.5) >= stitch_reports
+            seen.append((time.monotonic(), fraction, text.endswith("(stitching)")))
+            return sum(1 for _, f, stitching in seen if stitching and f > 0.5) >= stitch_reports
         return RemoteCancel(centerline, on_progress=on_progress)
     started = time.monotonic()
     data, c, _ = extract(volume, in_stitch, "cancel in the first rank's stitch", **LONG)
     ended = time.monotonic()
-    stitch_seen = [f for _, f in seen if f > 0.5]
+    stitch_seen = [f for _, f, stitching in seen if stitching and f > 0.5]
     check(len(stitch_seen) >= stitch_reports,
-          "the client saw the stitch's progress (%d reports past 50 %%: %s)"
+          "the client saw the stitch's progress (%d reports of the stitch, past 50 %%: %s)"
           % (len(stitch_seen), stitch_seen))
     check(c.cancelled() and message_of(data) == "Cancelled." and data.GetNumberOfLines() == 0,
           "a cancel in the stitch stops the run (%r, %r, %d lines)"
           % (c.answer, message_of(data), data.GetNumberOfLines()))
-    moments = [started] + [t for t, _ in seen] + [ended]
+    moments = [started] + [t for t, _, _ in seen] + [ended]
     gaps = [b - a for a, b in zip(moments, moments[1:])]
     longest = max(gaps)
     print("stitch cancel: %d reports in %.2f s, the longest gap %.2f s (%.0f %% of the run)"
