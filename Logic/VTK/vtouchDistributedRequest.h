@@ -96,7 +96,8 @@ public:
   };
   /// Collective: every rank calls it once per run. `output` is the rank's output (empty on every
   /// rank but the first). Throws vtouch::Cancelled on every rank together when a rank's
-  /// hooks.cancelRequested asked at a cancel point.
+  /// hooks.cancelRequested asked at a cancel point, or the first rank's stitch stopped at a check
+  /// point (hooks.stitchProgress; the ranks meet at a cancel point after the stitch).
   static Outcome run(vtkInformationVector** inputVector, vtkPolyData* output, const Hooks& hooks);
 };
 
