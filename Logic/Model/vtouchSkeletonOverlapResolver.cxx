@@ -407,7 +407,8 @@ void settleOnePointRuns(const std::vector<SkeletonFragment>& fragments,
 
 std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
   const std::vector<SkeletonFragment>& fragments,
-  int& duplicatesRemoved) const
+  int& duplicatesRemoved,
+  const ProgressSpan& progress) const
 {
   duplicatesRemoved = 0;
   double longestSegment = 0.0;
@@ -428,6 +429,14 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
     }
   }
   const std::size_t F = fragments.size();
+  std::uint64_t points = 0;
+  for (const SkeletonFragment& f : fragments)
+  {
+    points += f.points.size();
+  }
+  // The copy search is most of the resolver's time (the grid's cells grow with the longest
+  // segment): its check points (h18q).
+  ProgressCounter searched(progress.part(0.0, 0.9), points, kPointPeriod);
   std::vector<std::vector<std::vector<Copy>>> copies(F);
   for (std::size_t g = 0; g < F; ++g)
   {
@@ -435,8 +444,10 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
     {
       copies[g].push_back(
         nearestCopies(fragments, grid, g, i, copyReach_mm, minimumCopyCosine, coincidentPoint_mm));
+      searched.tick();
     }
   }
+  progress.report(0.9);
   // keep[g][i]: 1 kept, 0 dropped for a copy (toward[g][i] its fragment). Where one other piece
   // has a copy (a face), the lower piece's side decides (the midpoint rule, smoothed along its
   // fragment) and the other side takes the complement at its copy's place on the deciding
@@ -529,6 +540,7 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
     }
   }
   settleOnePointRuns(fragments, copies, copyReach_mm, coincidentPoint_mm, keep, toward);
+  progress.report(1.0);
   std::vector<OverlapRun> runs;
   for (std::size_t g = 0; g < F; ++g)
   {

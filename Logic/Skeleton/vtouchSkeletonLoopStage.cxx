@@ -18,6 +18,34 @@ namespace skeleton
 namespace
 {
 constexpr float kInf = VoxelCodes::kInf;
+/// A check point every 256 clusters of the loop passes (h18q: the passes had none, and took
+/// 1.2-1.8 s of a 128^3 raw phantom piece's coding on 2 ranks, the longest stretch without a
+/// progress report of that coding, and minutes of a 256^3 one; project rule: most clusters cost
+/// nanoseconds there, a check point a progress callback).
+constexpr std::uint32_t kClusterCheckMask = 0xFF;
+
+/// A check point every 16 searches of the loop passes (a descent, a distance along the
+/// skeleton, an end's scan of the paths near it: each up to milliseconds on the 256^3 raw
+/// phantom's pieces; h18q, project rule as above).
+class SearchCheck
+{
+public:
+  explicit SearchCheck(RunMeter& meter)
+    : Meter(meter)
+  {
+  }
+  void tick()
+  {
+    if ((++this->Count & 0xFU) == 0)
+    {
+      this->Meter.checkpoint();
+    }
+  }
+
+private:
+  RunMeter& Meter;
+  std::uint32_t Count = 0;
+};
 } // namespace
 
 LoopStage::LoopStage(SkeletonTracer& t,
@@ -45,9 +73,14 @@ void LoopStage::closeLoops()
   const std::vector<Cluster>& clusters = tracer.graph.clusters; // path, point change as it goes
   RawSkeleton& out = tracer.out;
   const StageTimer timer{ tracer.meter, "loops" };
+  SearchCheck searches(tracer.meter);
   const std::size_t clusterCount = clusters.size();
   for (std::uint32_t c = 0; c < clusterCount; ++c)
   {
+    if ((c & kClusterCheckMask) == 0)
+    {
+      tracer.meter.checkpoint(); // not counted as work: a check point of its own (h18q)
+    }
     if (clusters[c].lower.size() < 2)
     {
       continue;
@@ -59,6 +92,7 @@ void LoopStage::closeLoops()
       {
         continue;
       }
+      searches.tick();
       // Side A: the cluster itself when it is on the skeleton, else another lower neighbour
       // already on it, else a trace down through another lower neighbour.
       Trace a;
@@ -155,6 +189,7 @@ void LoopStage::closeTracedLoops()
   const std::vector<Cluster>& clusters = tracer.graph.clusters; // path, point change as it goes
   RawSkeleton& out = tracer.out;
   const StageTimer timer{ tracer.meter, "loops" };
+  SearchCheck searches(tracer.meter);
   // Junction links in both directions: (path, point) -> (path, point).
   JunctionLinks links;
   const auto link = [&](const RawJunction& j) { linkJunction(out, j, links); };
@@ -164,6 +199,10 @@ void LoopStage::closeTracedLoops()
   }
   for (std::uint32_t c = 0; c < clusters.size(); ++c)
   {
+    if ((c & kClusterCheckMask) == 0)
+    {
+      tracer.meter.checkpoint(); // not counted as work: a check point of its own (h18q)
+    }
     // The places on the skeleton next to the cluster: its own and its lower neighbours'.
     std::vector<std::pair<int, int>> sides;
     if (clusters[c].path >= static_cast<int>(firstPath))
@@ -210,6 +249,7 @@ void LoopStage::closeTracedLoops()
           vesselRadiusNear(pb, sides[b].second, 2.0 * grid.maxSpacing) });
         const double nearby = std::max(
           cutoff, 2.0 * (2.0 * vessel + 2.0 * grid.bandWidth + minimumBranchLength * vessel));
+        searches.tick();
         if (skeletonDistance(out, sides[a], sides[b], nearby, links) <= nearby)
         {
           continue;
@@ -294,10 +334,12 @@ void LoopStage::joinFacingEnds()
   const VoxelGrid& grid = tracer.grid;
   RawSkeleton& out = tracer.out;
   const StageTimer timer{ tracer.meter, "loops" };
+  SearchCheck searches(tracer.meter);
   std::vector<char> attached; // per path point: a junction's parent point
   std::vector<FreeEnd> ends;
   for (std::size_t p = firstPath; p < out.paths.size(); ++p)
   {
+    searches.tick(); // each path scans every junction
     const RawSkeletonPath& path = out.paths[p];
     const int n = static_cast<int>(path.center_mm.size());
     attached.assign(static_cast<std::size_t>(n), 0);
@@ -358,6 +400,7 @@ void LoopStage::joinFacingEnds()
   }
   for (std::size_t e = 0; e < ends.size(); ++e)
   {
+    searches.tick();
     const FreeEnd& end = ends[e];
     const double reach = 4.0 * end.radius_mm + 2.0 * grid.bandWidth;
     for (std::size_t p = firstPath; p < out.paths.size(); ++p)
@@ -395,6 +438,7 @@ void LoopStage::joinFacingEnds()
   std::vector<char> used(ends.size(), 0);
   for (const Candidate& cand : candidates)
   {
+    searches.tick();
     const FreeEnd& end = ends[cand.end];
     const auto target = std::find_if(ends.begin(),
       ends.end(),

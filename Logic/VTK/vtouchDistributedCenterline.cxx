@@ -117,7 +117,8 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   const VoxelExtent6& whole,
   PieceReport report,
   double joinTolerance_mm,
-  Result& result)
+  Result& result,
+  const ProgressCallback& stitchProgress)
 {
   using Clock = std::chrono::steady_clock;
   const auto since = [](Clock::time_point t0)
@@ -178,6 +179,7 @@ bool DistributedCenterline::gatherAndStitch(vtkMultiProcessController* controlle
   stitcher.copyReach_mm = kCopyReachVoxels * voxel_mm;
   stitcher.coverageReach_mm = kCopyReachVoxels * voxel_mm;
   stitcher.coincidentPoint_mm = kCoincidentPointVoxels * voxel_mm;
+  stitcher.progress = stitchProgress;
   result.skeleton = stitcher.stitch(all, result.stitch);
   result.stitchSeconds = since(stitchStart);
   return true;

@@ -6,6 +6,7 @@
 #include "vtouchPieceInWhole.h"
 #include "vtouchPieceOwnership.h"
 #include "vtouchQSkeleton.h"
+#include "vtouchProgress.h"
 #include "vtouchSkeletonStitcher.h"
 
 #include <string>
@@ -77,13 +78,17 @@ public:
   /// its grown extent) to the piece's owned extent and its overlap band (kOverlapBandVoxels),
   /// gathers the fragments and reports on the first rank and stitches them there (one copy of
   /// what two pieces both sent kept, kCopyReachVoxels). Returns true on the first rank.
+  /// `stitchProgress` (optional): the first rank's stitch's progress and cancel
+  /// (SkeletonStitcher::progress); a cancel there throws vtouch::Cancelled on the first rank
+  /// only, after the gathers (the caller meets the other ranks at a cancel point of its own).
   static bool gatherAndStitch(vtkMultiProcessController* controller,
     const QSkeleton& own,
     const IndexFrame& frame,
     const VoxelExtent6& whole,
     PieceReport report,
     double joinTolerance_mm,
-    Result& result);
+    Result& result,
+    const ProgressCallback& stitchProgress = ProgressCallback());
   /// The stitch's and the ranks' reports as field data of the stitched output (the arrays
   /// DistributedPieces, GhostMarginVoxels, Stitch* (StitchDuplicatesRemoved,
   /// StitchBandStubsDropped, StitchPointsDropped, StitchStrayPointsDropped among them), Piece*,

@@ -138,8 +138,38 @@ DistributedRequest::Outcome DistributedRequest::run(vtkInformationVector** input
   }
   DistributedCenterline::Result result;
   output->Initialize();
-  if (!DistributedCenterline::gatherAndStitch(
-        controller, skeleton, frame, whole, report, 2.0 * largestSpacing, result))
+  // The first rank's stitch has check points of its own (hooks.stitchProgress, h18q): a cancel
+  // there stops it on the first rank alone, after the gathers.
+  bool firstRank = false;
+  bool stitchCancelled = false;
+  try
+  {
+    firstRank = DistributedCenterline::gatherAndStitch(controller,
+      skeleton,
+      frame,
+      whole,
+      report,
+      2.0 * largestSpacing,
+      result,
+      hooks.stitchProgress);
+  }
+  catch (const Cancelled&)
+  {
+    firstRank = stitchCancelled = true;
+  }
+  // Collective: a cancel point after the stitch (one word per rank, h18q), where a stitch stopped
+  // for a cancel meets the others and every rank throws together. The other ranks wait here for
+  // the first rank's stitch (they would wait for it in ParaView's next collective, or in the
+  // refinement's rounds, anyway): a rank that left before would keep this run as completed while
+  // the first rank cancelled it, and the ranks' kept outputs (vtkVesselTouchCenterlineFilter's
+  // project rule) would no longer be the same run's.
+  {
+    ControllerCollectives exchanges(controller);
+    CancellableCollectives(exchanges,
+      [&] { return stitchCancelled || (hooks.cancelRequested && hooks.cancelRequested()); })
+      .agree();
+  }
+  if (!firstRank)
   {
     if (hooks.afterStitchCollective)
     {

@@ -6,6 +6,7 @@
 
 #include "vtouchDistributedCenterline.h" // for VoxelExtent6
 #include "vtouchCancellableCollectives.h"
+#include "vtouchProgress.h"
 #include "vtouchQSkeleton.h"
 #include "vtouchRankTimeline.h"
 
@@ -56,6 +57,10 @@ public:
     /// exchange of the ranks, CancellableCollectives); a cancel throws vtouch::Cancelled out of
     /// run() on every rank at the same one.
     std::function<bool()> cancelRequested;
+    /// The first rank's stitch's progress and cancel (optional; SkeletonStitcher::progress): the
+    /// fraction of the stitch done at its check points, false to stop it. A stop there is taken
+    /// by every rank at the cancel point after the stitch (vtouch::Cancelled out of run()).
+    ProgressCallback stitchProgress;
     /// Optional, collective: runs on every rank before its piece is coded, with or without an
     /// input (the raw seeded mode's range and region across the ranks).
     std::function<void(vtkImageData* input, const VoxelExtent6& whole)> beforePiece;
@@ -95,7 +100,8 @@ public:
   };
   /// Collective: every rank calls it once per run. `output` is the rank's output (empty on every
   /// rank but the first). Throws vtouch::Cancelled on every rank together when a rank's
-  /// hooks.cancelRequested asked at a cancel point.
+  /// hooks.cancelRequested asked at a cancel point, or the first rank's stitch stopped at a check
+  /// point (hooks.stitchProgress; the ranks meet at a cancel point after the stitch).
   static Outcome run(vtkInformationVector** inputVector, vtkPolyData* output, const Hooks& hooks);
 };
 
