@@ -108,6 +108,12 @@ bool findEntry(const std::vector<SkeletonPoint>& branch, // from the attached en
   {
     return false;
   }
+  // A branch hanging on an end of its parent joins two paths there: moving it would leave that
+  // end free (a vessel end the network did not have).
+  if (codedParentPoint == 0 || codedParentPoint + 1 == parent.size())
+  {
+    return false;
+  }
   const double parentRadius = parent[codedParentPoint].radius_mm;
   if (!(parentRadius > 0.0))
   {

@@ -17,8 +17,9 @@
 // than half the parent's radius from every parent centre ahead of it, meets it more than four
 // parent radii on, or runs within 10 degrees of the parent's axis: a vessel continuing past a
 // root or a loop's two fronts, not a branch), when the branch does not leave the parent's tube
-// within four parent radii of its end, and when another path hangs on the stretch that would
-// be replaced.
+// within four parent radii of its end, when it hangs on an end of its parent (the two paths
+// join there: that end would become free), and when another path hangs on the stretch that
+// would be replaced.
 //
 // The network's last step, on positions already smoothed and refined (the raw path's tube
 // sections judge a junction's zone where the coder put it): the single run's

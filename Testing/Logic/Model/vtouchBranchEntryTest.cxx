@@ -221,6 +221,20 @@ TEST(BranchEntry, WhatIsNotABranchEnteringItsParentIsKeptAsCoded)
     b.back().label = PointLabel::EndPoint;
     EXPECT_EQ(placeBranchEntries(s).junctionsMoved, 0u);
   }
+  // Hanging on an end of its parent (the parent runs from y = 26 on, its head is the coded
+  // point): the two paths join there; moved to y = 30, the parent's head would be a free end.
+  {
+    QSkeleton s = codedBranch(30.0, 26);
+    std::vector<SkeletonPoint>& parent = s.paths[0].points;
+    parent.erase(parent.begin(), parent.begin() + 26);
+    parent.front().label = PointLabel::EndPoint;
+    s.junctions[0].parentPoint = 0;
+    ASSERT_EQ(s.validate(), "");
+    const QSkeleton before = s;
+    EXPECT_EQ(placeBranchEntries(s).junctionsMoved, 0u);
+    EXPECT_EQ(s.junctions[0].parentPoint, 0);
+    EXPECT_TRUE(allPointsNear(s, before, 0.0) && allPointsNear(before, s, 0.0));
+  }
   // Leaving the parent's tube at once: nothing inside to replace.
   {
     QSkeleton s;
