@@ -1,0 +1,73 @@
+// A uniform grid over line segments for "which segments pass within a reach of this point"
+// queries (h18s: the stitcher's coverage check). Plain C++.
+#pragma once
+
+#include "vtouchVector.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace vtouch
+{
+
+/// Buckets segments by the cells they pass through, so that a query visits only the segments
+/// near it, however long some of them are (a junction link may cross the volume).
+///
+/// Why not FragmentPointGrid (h18s): bucketing a segment by its two ends needs cells of the
+/// reach plus half the longest segment, and one long junction link made every cell hold most of
+/// the skeleton (the coverage check of the 128^3 raw phantom on 2 ranks: 13.6 s of a 20.8 s
+/// stitch). Here a segment is sampled along its length every half cell and recorded in each
+/// sample's cell, so the cell size depends on the reach alone.
+///
+/// Guarantee: with `reach_mm` <= 0.75 `cell_mm` (the constructor's default cell is twice the
+/// reach), every segment with a point within `reach_mm` of a position is visited by visitNear
+/// (any point of a segment lies within a quarter cell of a sample, so that sample lies within
+/// one cell of the position along every axis). Segments farther away may be visited too, and a
+/// segment may be visited more than once (the caller measures the distance).
+class SegmentGrid
+{
+public:
+  /// `reach_mm`: the largest query distance the caller needs (>= 0). `cell_mm`: the cells' side
+  /// (mm); 0 (the default) means twice the reach; never less than 4/3 of the reach, nor 1e-9.
+  explicit SegmentGrid(double reach_mm, double cell_mm = 0.0);
+  /// Records segment `index` from `a_World_mm` to `b_World_mm` (a point when they are equal).
+  void add(const Vec3& a_World_mm, const Vec3& b_World_mm, std::size_t index);
+  /// Calls `f(index)` for the segments recorded in the 27 cells around `position_World_mm`'s
+  /// (every segment within the reach among them), in the order of the cells then of add().
+  template<typename F>
+  void visitNear(const Vec3& position_World_mm, F&& f) const;
+  double cellSize_mm() const { return cell_mm_; }
+
+private:
+  std::int64_t key(long i, long j, long k) const;
+  long cellOf(double v) const;
+  const std::vector<std::size_t>* cell(long i, long j, long k) const;
+  double cell_mm_;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells_;
+};
+
+template<typename F>
+void SegmentGrid::visitNear(const Vec3& p, F&& f) const
+{
+  const long ci = cellOf(p.x), cj = cellOf(p.y), ck = cellOf(p.z);
+  for (long i = ci - 1; i <= ci + 1; ++i)
+  {
+    for (long j = cj - 1; j <= cj + 1; ++j)
+    {
+      for (long k = ck - 1; k <= ck + 1; ++k)
+      {
+        if (const std::vector<std::size_t>* items = cell(i, j, k))
+        {
+          for (const std::size_t index : *items)
+          {
+            f(index);
+          }
+        }
+      }
+    }
+  }
+}
+
+} // namespace vtouch
