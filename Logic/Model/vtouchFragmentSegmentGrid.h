@@ -7,6 +7,8 @@
 #include "vtouchSkeletonFragment.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace vtouch
@@ -42,11 +44,16 @@ private:
   long orderCellOf(double v) const;
   const std::vector<SkeletonFragment>& fragments_;
   double orderCell_mm_;
+  double filter_mm_; ///< the reach and a rounding margin
   SegmentGrid segments_;
   /// Segment id -> (fragment, first point); segment s of fragment g runs from point s to point
   /// s + 1 (to itself at the last point).
   std::vector<FragmentPointGrid::Item> segmentStart_;
+  /// The index of each fragment's first point among all points (fragment then point order).
+  std::vector<std::uint64_t> firstPoint_;
   mutable std::vector<FragmentPointGrid::Item> buffer_;
+  /// (rank, item): rank = the order cell's place (0-26) above the point's overall index.
+  mutable std::vector<std::pair<std::uint64_t, FragmentPointGrid::Item>> ranked_;
 };
 
 template<typename F>

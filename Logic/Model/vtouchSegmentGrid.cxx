@@ -7,7 +7,8 @@ namespace vtouch
 {
 
 SegmentGrid::SegmentGrid(double reach_mm, double cell_mm)
-  : cell_mm_(std::max({ cell_mm > 0.0 ? cell_mm : 2.0 * reach_mm, reach_mm / 0.75, 1e-9 }))
+  : cell_mm_(std::max(cell_mm > 0.0 ? cell_mm : reach_mm, 1e-9))
+  , halfBox_mm_(std::max(reach_mm, 0.0) + 0.25 * cell_mm_)
 {
 }
 

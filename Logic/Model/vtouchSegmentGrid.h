@@ -21,21 +21,23 @@ namespace vtouch
 /// stitch). Here a segment is sampled along its length every half cell and recorded in each
 /// sample's cell, so the cell size depends on the reach alone.
 ///
-/// Guarantee: with `reach_mm` <= 0.75 `cell_mm` (the constructor's default cell is twice the
-/// reach), every segment with a point within `reach_mm` of a position is visited by visitNear
-/// (any point of a segment lies within a quarter cell of a sample, so that sample lies within
-/// one cell of the position along every axis). Segments farther away may be visited too, and a
-/// segment may be visited more than once (the caller measures the distance).
+/// Guarantee: every segment with a point within `reach_mm` of a position is visited by visitNear:
+/// any point of a segment lies within a quarter cell of a sample, so the cells overlapping the
+/// box of half side `reach_mm` + a quarter cell around the position hold it. Segments farther
+/// away may be visited too, and a segment may be visited more than once (the caller measures the
+/// distance).
 class SegmentGrid
 {
 public:
   /// `reach_mm`: the largest query distance the caller needs (>= 0). `cell_mm`: the cells' side
-  /// (mm); 0 (the default) means twice the reach; never less than 4/3 of the reach, nor 1e-9.
+  /// (mm); 0 (the default) means the reach (h18s: a query then visits cells holding about
+  /// (3.5 reach)^3, a fifth of 27 cells of twice the reach); never below 1e-9.
   explicit SegmentGrid(double reach_mm, double cell_mm = 0.0);
   /// Records segment `index` from `a_World_mm` to `b_World_mm` (a point when they are equal).
   void add(const Vec3& a_World_mm, const Vec3& b_World_mm, std::size_t index);
-  /// Calls `f(index)` for the segments recorded in the 27 cells around `position_World_mm`'s
-  /// (every segment within the reach among them), in the order of the cells then of add().
+  /// Calls `f(index)` for the segments recorded in the cells overlapping the box above around
+  /// `position_World_mm` (every segment within the reach among them), in the order of the cells
+  /// (x outermost, each ascending) then of add().
   template<typename F>
   void visitNear(const Vec3& position_World_mm, F&& f) const;
   double cellSize_mm() const { return cell_mm_; }
@@ -45,18 +47,20 @@ private:
   long cellOf(double v) const;
   const std::vector<std::size_t>* cell(long i, long j, long k) const;
   double cell_mm_;
+  double halfBox_mm_; ///< the reach plus a quarter cell
   std::unordered_map<std::int64_t, std::vector<std::size_t>> cells_;
 };
 
 template<typename F>
 void SegmentGrid::visitNear(const Vec3& p, F&& f) const
 {
-  const long ci = cellOf(p.x), cj = cellOf(p.y), ck = cellOf(p.z);
-  for (long i = ci - 1; i <= ci + 1; ++i)
+  const double h = halfBox_mm_;
+  const long i1 = cellOf(p.x + h), j1 = cellOf(p.y + h), k1 = cellOf(p.z + h);
+  for (long i = cellOf(p.x - h); i <= i1; ++i)
   {
-    for (long j = cj - 1; j <= cj + 1; ++j)
+    for (long j = cellOf(p.y - h); j <= j1; ++j)
     {
-      for (long k = ck - 1; k <= ck + 1; ++k)
+      for (long k = cellOf(p.z - h); k <= k1; ++k)
       {
         if (const std::vector<std::size_t>* items = cell(i, j, k))
         {
