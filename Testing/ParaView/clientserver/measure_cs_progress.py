@@ -54,6 +54,11 @@ def save_and_hash(data, path):
                 digest.update(vtk_to_numpy(a).tobytes())
     print("output %s: %d points, %d lines, sha256 %s"
           % (path, data.GetNumberOfPoints(), data.GetNumberOfLines(), digest.hexdigest()))
+    fd = data.GetFieldData()
+    report = [(fd.GetArrayName(k), fd.GetArray(k).GetComponent(0, 0))
+              for k in range(fd.GetNumberOfArrays())
+              if (fd.GetArrayName(k) or "").startswith("Stitch") and fd.GetArray(k) is not None]
+    print("stitch report %s" % report)
 
 
 def main():
