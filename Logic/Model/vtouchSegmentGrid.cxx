@@ -8,7 +8,7 @@ namespace vtouch
 
 SegmentGrid::SegmentGrid(double reach_mm, double cell_mm)
   : cell_mm_(std::max(cell_mm > 0.0 ? cell_mm : reach_mm, 1e-9))
-  , halfBox_mm_(std::max(reach_mm, 0.0) + 0.25 * cell_mm_)
+  , reach_mm_(std::max(reach_mm, 0.0))
 {
 }
 

@@ -4,6 +4,7 @@
 
 #include "vtouchVector.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <unordered_map>
@@ -39,7 +40,13 @@ public:
   /// `position_World_mm` (every segment within the reach among them), in the order of the cells
   /// (x outermost, each ascending) then of add().
   template<typename F>
-  void visitNear(const Vec3& position_World_mm, F&& f) const;
+  void visitNear(const Vec3& position_World_mm, F&& f) const
+  {
+    visitWithin(position_World_mm, reach_mm_, f);
+  }
+  /// As visitNear, for another reach (>= 0; a larger one visits more cells).
+  template<typename F>
+  void visitWithin(const Vec3& position_World_mm, double reach_mm, F&& f) const;
   double cellSize_mm() const { return cell_mm_; }
 
 private:
@@ -47,14 +54,14 @@ private:
   long cellOf(double v) const;
   const std::vector<std::size_t>* cell(long i, long j, long k) const;
   double cell_mm_;
-  double halfBox_mm_; ///< the reach plus a quarter cell
+  double reach_mm_;
   std::unordered_map<std::int64_t, std::vector<std::size_t>> cells_;
 };
 
 template<typename F>
-void SegmentGrid::visitNear(const Vec3& p, F&& f) const
+void SegmentGrid::visitWithin(const Vec3& p, double reach_mm, F&& f) const
 {
-  const double h = halfBox_mm_;
+  const double h = std::max(reach_mm, 0.0) + 0.25 * cell_mm_;
   const long i1 = cellOf(p.x + h), j1 = cellOf(p.y + h), k1 = cellOf(p.z + h);
   for (long i = cellOf(p.x - h); i <= i1; ++i)
   {

@@ -3,6 +3,7 @@
 #include "vtouchOverlapBandStubs.h"
 #include "vtouchSegmentGrid.h"
 #include "vtouchSkeletonOverlapResolver.h"
+#include "vtouchSkeletonPointIndex.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,11 @@ namespace
 /// Paths attached between two check points. Project rule (h18q): attaching a path's ends costs
 /// up to about 2 ms on the long-run scenes (the nearest point of the whole stitched skeleton).
 constexpr std::uint64_t kPathPeriod = 8;
+
+/// Project rule (h18s): the attachments' point index is asked for the accepted distance plus
+/// this (mm), so that no rounding drops a point the scan would accept (a point too many is
+/// measured as the scan measured it and changes nothing).
+constexpr double kIndexMargin_mm = 1e-6;
 
 /// End e of the fragment list: fragment e / 2, head when e is even, tail when odd.
 const FragmentEnd& endOf(const std::vector<SkeletonFragment>& f, std::size_t e)
@@ -255,7 +261,11 @@ bool sameNeighbours(const SkeletonPath& path, std::size_t i, const FragmentEnd& 
 /// thresholded: the child one point off moved 15 points by up to 0.078 mm, h17f).
 /// Never another path's attached end (`ends`): it is a copy of its own parent point, where two
 /// branches leave one point the other branch's head lies on the parent point too.
+/// Only `candidates` ((path index, point), in path then point order: the scan's order, which
+/// decides full ties) are measured: SkeletonPointIndex gives every point within the distance the
+/// caller accepts (h18s; a farther point never wins where a nearer one exists).
 bool nearestPoint(const QSkeleton& s,
+  const std::vector<std::pair<std::size_t, std::size_t>>& candidates,
   const std::vector<ChainEnds>& ends,
   const FragmentEnd& end,
   double radius_mm,
@@ -270,36 +280,33 @@ bool nearestPoint(const QSkeleton& s,
   bool atEnd = false;
   double radiusOff = std::numeric_limits<double>::infinity();
   bool neighboursMatch = false;
-  for (const SkeletonPath& candidate : s.paths)
+  for (const auto& [pathIndex, i] : candidates)
   {
-    for (std::size_t i = 0; i < candidate.points.size(); ++i)
+    const SkeletonPath& candidate = s.paths[pathIndex];
+    if (candidate.id == self && std::labs(static_cast<long>(i) - selfPoint) <= 2)
     {
-      if (candidate.id == self && std::labs(static_cast<long>(i) - selfPoint) <= 2)
-      {
-        continue;
-      }
-      const bool head = i == 0, tail = i + 1 == candidate.points.size();
-      const ChainEnds& e = ends[static_cast<std::size_t>(candidate.id)];
-      if (candidate.id != self && ((head && e.head.kind == FragmentEnd::Kind::Attached) ||
-                                    (tail && e.tail.kind == FragmentEnd::Kind::Attached)))
-      {
-        continue;
-      }
-      const double di = (candidate.points[i].position_World_mm - p).norm();
-      const bool isEnd = head || tail;
-      const double off = std::abs(candidate.points[i].radius_mm - radius_mm);
-      const bool matches = sameNeighbours(candidate, i, end);
-      if (di < d || (di == d && isEnd && !atEnd) ||
-          (di == d && isEnd == atEnd && off < radiusOff) ||
-          (di == d && isEnd == atEnd && off == radiusOff && matches && !neighboursMatch))
-      {
-        d = di;
-        path = candidate.id;
-        point = static_cast<int>(i);
-        atEnd = isEnd;
-        radiusOff = off;
-        neighboursMatch = matches;
-      }
+      continue;
+    }
+    const bool head = i == 0, tail = i + 1 == candidate.points.size();
+    const ChainEnds& e = ends[static_cast<std::size_t>(candidate.id)];
+    if (candidate.id != self && ((head && e.head.kind == FragmentEnd::Kind::Attached) ||
+                                  (tail && e.tail.kind == FragmentEnd::Kind::Attached)))
+    {
+      continue;
+    }
+    const double di = (candidate.points[i].position_World_mm - p).norm();
+    const bool isEnd = head || tail;
+    const double off = std::abs(candidate.points[i].radius_mm - radius_mm);
+    const bool matches = sameNeighbours(candidate, i, end);
+    if (di < d || (di == d && isEnd && !atEnd) || (di == d && isEnd == atEnd && off < radiusOff) ||
+        (di == d && isEnd == atEnd && off == radiusOff && matches && !neighboursMatch))
+    {
+      d = di;
+      path = candidate.id;
+      point = static_cast<int>(i);
+      atEnd = isEnd;
+      radiusOff = off;
+      neighboursMatch = matches;
     }
   }
   return std::isfinite(d);
@@ -534,6 +541,7 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
   }
   all.report(0.3);
   // Junctions: attached ends by their parent point's position; loops onto their own point 0.
+  SkeletonPointIndex points(s, joinTolerance_mm);
   ProgressCounter attached(all.part(0.3, 0.4), s.paths.size(), kPathPeriod);
   for (std::size_t i = 0; i < s.paths.size(); ++i)
   {
@@ -569,9 +577,18 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
       }
       int parentPath = -1, parentPoint = -1;
       double d = 0.0;
-      const bool found =
-        nearestPoint(s, chainEnds, end, q.radius_mm, path.id, index, parentPath, parentPoint, d);
-      if (!found || d > std::max(joinTolerance_mm, 0.5 * q.radius_mm))
+      const double accepted_mm = std::max(joinTolerance_mm, 0.5 * q.radius_mm);
+      const bool found = nearestPoint(s,
+        points.near(end.position_World_mm, accepted_mm + kIndexMargin_mm),
+        chainEnds,
+        end,
+        q.radius_mm,
+        path.id,
+        index,
+        parentPath,
+        parentPoint,
+        d);
+      if (!found || d > accepted_mm)
       {
         ++report.attachmentsUnresolved;
         report.notes.push_back(describe("unresolved attached end", q.position_World_mm, -1));
@@ -585,6 +602,7 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
         q.position_World_mm = s.paths[static_cast<std::size_t>(parentPath)]
                                 .points[static_cast<std::size_t>(parentPoint)]
                                 .position_World_mm;
+        points.moved(i, static_cast<std::size_t>(index));
       }
       Junction j;
       j.childPath = path.id;

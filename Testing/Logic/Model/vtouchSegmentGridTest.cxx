@@ -3,10 +3,12 @@
 // junction link no longer makes every query visit most of the skeleton (the 128^3 raw phantom's
 // stitch on 2 ranks spent 13.6 of 20.8 s in the coverage check's grid before). They must find
 // every segment a brute-force search finds and, for the copy search, hand its candidates over in
-// the old grid's order (its ties keep the first copy).
+// the old grid's order (its ties keep the first copy). The attachments' SkeletonPointIndex must
+// give every point within the reach, and every moved one, in the scan's order.
 #include "vtouchFragmentPointGrid.h"
 #include "vtouchFragmentSegmentGrid.h"
 #include "vtouchSegmentGrid.h"
+#include "vtouchSkeletonPointIndex.h"
 
 #include <gtest/gtest.h>
 
@@ -221,6 +223,66 @@ TEST(FragmentSegmentGrid, GivesTheOrderGridsCandidatesWithANearSegmentInItsOrder
   ASSERT_GT(candidates, 0u);
   // The old cells hold the whole box: every query visited every point; the new ones a few.
   EXPECT_LT(newVisits * 20, oldVisits);
+}
+
+} // namespace
+
+namespace
+{
+
+/// The walks as the paths of a skeleton.
+QSkeleton walksAsPaths()
+{
+  QSkeleton s;
+  for (const SkeletonFragment& f : walksAndOneLongLink())
+  {
+    SkeletonPath path;
+    path.id = static_cast<int>(s.paths.size());
+    path.points = f.points;
+    s.paths.push_back(path);
+  }
+  return s;
+}
+
+TEST(SkeletonPointIndex, GivesEveryPointWithinReachAndEveryMovedOneInScanOrder)
+{
+  QSkeleton s = walksAsPaths();
+  SkeletonPointIndex index(s, 2.0);
+  // Move two points far from where they were indexed (as the stitcher moves an attached end
+  // onto its parent point), one of them next to the first query.
+  const Vec3 query = s.paths[3].points[20].position_World_mm;
+  s.paths[0].points[0].position_World_mm = query + Vec3{ 0.5, 0.0, 0.0 };
+  index.moved(0, 0);
+  s.paths[5].points.back().position_World_mm = Vec3{ -50.0, -50.0, -50.0 };
+  index.moved(5, s.paths[5].points.size() - 1);
+  std::size_t handed = 0, total = 0;
+  for (const double reach_mm : { 2.0, 5.0 })
+  {
+    for (const Vec3& p : queries(walksAndOneLongLink()))
+    {
+      const Vec3 at = handed == 0 ? query : p;
+      const std::vector<std::pair<std::size_t, std::size_t>>& got = index.near(at, reach_mm);
+      EXPECT_TRUE(std::is_sorted(got.begin(), got.end()));
+      EXPECT_TRUE(std::adjacent_find(got.begin(), got.end()) == got.end());
+      const std::set<std::pair<std::size_t, std::size_t>> set(got.begin(), got.end());
+      EXPECT_EQ(set.count({ 0, 0 }), 1u);
+      EXPECT_EQ(set.count({ 5, s.paths[5].points.size() - 1 }), 1u);
+      for (std::size_t k = 0; k < s.paths.size(); ++k)
+      {
+        for (std::size_t i = 0; i < s.paths[k].points.size(); ++i)
+        {
+          if ((s.paths[k].points[i].position_World_mm - at).norm() <= reach_mm)
+          {
+            EXPECT_EQ(set.count({ k, i }), 1u) << "path " << k << " point " << i;
+          }
+          ++total;
+        }
+      }
+      handed += got.size();
+    }
+  }
+  // A query hands over a few of the 2402 points, not all of them.
+  EXPECT_LT(handed * 10, total);
 }
 
 } // namespace
