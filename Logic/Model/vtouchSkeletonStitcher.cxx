@@ -426,7 +426,9 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
   report = StitchReport{};
   // Progress shares (h18q): the 128^3 raw phantom's seeded long run on 2 ranks spent 26 % of its
   // 20.8 s stitch resolving the overlap, 9 % attaching ends and 65 % in the coverage check;
-  // the joins between take milliseconds (a check point after each).
+  // the joins between take milliseconds (a check point after each). Since h18s's grids the
+  // check and the attachments take a fraction of that: the shares now overweight them (left
+  // alone, Docs/CLIENT-SERVER.md).
   const ProgressSpan all(&this->progress);
   all.report(0.0);
   std::vector<SkeletonFragment> sent;
