@@ -1,6 +1,6 @@
 #include "vtouchSkeletonOverlapResolver.h"
 
-#include "vtouchFragmentPointGrid.h"
+#include "vtouchFragmentSegmentGrid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -79,7 +79,7 @@ bool isAttachedEnd(const SkeletonFragment& f, std::size_t i)
 /// A point within `coincident_mm` is a copy whatever the directions (see
 /// SkeletonOverlapResolver::coincidentPoint_mm), unless either is an attached end.
 std::vector<Copy> nearestCopies(const std::vector<SkeletonFragment>& fragments,
-  const FragmentPointGrid& grid,
+  const FragmentSegmentGrid& grid,
   std::size_t g,
   std::size_t i,
   double reach_mm,
@@ -420,22 +420,17 @@ std::vector<OverlapRun> SkeletonOverlapResolver::resolve(
         longestSegment, (f.points[i + 1].position_World_mm - f.points[i].position_World_mm).norm());
     }
   }
-  FragmentPointGrid grid(copyReach_mm + 0.5 * longestSegment);
-  for (std::size_t g = 0; g < fragments.size(); ++g)
-  {
-    for (std::size_t i = 0; i < fragments[g].points.size(); ++i)
-    {
-      grid.add(fragments[g].points[i].position_World_mm, { g, i });
-    }
-  }
+  // The candidates in the order of a grid of cells of the reach plus half the longest segment
+  // (the order decides ties), found through cells of the reach alone (h18s: one long junction
+  // link made those cells huge; vtouch::FragmentSegmentGrid).
+  const FragmentSegmentGrid grid(fragments, copyReach_mm + 0.5 * longestSegment, copyReach_mm);
   const std::size_t F = fragments.size();
   std::uint64_t points = 0;
   for (const SkeletonFragment& f : fragments)
   {
     points += f.points.size();
   }
-  // The copy search is most of the resolver's time (the grid's cells grow with the longest
-  // segment): its check points (h18q).
+  // The copy search is most of the resolver's time: its check points (h18q).
   ProgressCounter searched(progress.part(0.0, 0.9), points, kPointPeriod);
   std::vector<std::vector<std::vector<Copy>>> copies(F);
   for (std::size_t g = 0; g < F; ++g)

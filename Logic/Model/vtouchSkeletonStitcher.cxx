@@ -1,8 +1,9 @@
 #include "vtouchSkeletonStitcher.h"
 
-#include "vtouchFragmentPointGrid.h"
 #include "vtouchOverlapBandStubs.h"
+#include "vtouchSegmentGrid.h"
 #include "vtouchSkeletonOverlapResolver.h"
+#include "vtouchSkeletonPointIndex.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,11 @@ namespace
 /// Paths attached between two check points. Project rule (h18q): attaching a path's ends costs
 /// up to about 2 ms on the long-run scenes (the nearest point of the whole stitched skeleton).
 constexpr std::uint64_t kPathPeriod = 8;
+
+/// Project rule (h18s): the attachments' point index is asked for the accepted distance plus
+/// this (mm), so that no rounding drops a point the scan would accept (a point too many is
+/// measured as the scan measured it and changes nothing).
+constexpr double kIndexMargin_mm = 1e-6;
 
 /// End e of the fragment list: fragment e / 2, head when e is even, tail when odd.
 const FragmentEnd& endOf(const std::vector<SkeletonFragment>& f, std::size_t e)
@@ -255,7 +261,11 @@ bool sameNeighbours(const SkeletonPath& path, std::size_t i, const FragmentEnd& 
 /// thresholded: the child one point off moved 15 points by up to 0.078 mm, h17f).
 /// Never another path's attached end (`ends`): it is a copy of its own parent point, where two
 /// branches leave one point the other branch's head lies on the parent point too.
+/// Only `candidates` ((path index, point), in path then point order: the scan's order, which
+/// decides full ties) are measured: SkeletonPointIndex gives every point within the distance the
+/// caller accepts (h18s; a farther point never wins where a nearer one exists).
 bool nearestPoint(const QSkeleton& s,
+  const std::vector<std::pair<std::size_t, std::size_t>>& candidates,
   const std::vector<ChainEnds>& ends,
   const FragmentEnd& end,
   double radius_mm,
@@ -270,36 +280,33 @@ bool nearestPoint(const QSkeleton& s,
   bool atEnd = false;
   double radiusOff = std::numeric_limits<double>::infinity();
   bool neighboursMatch = false;
-  for (const SkeletonPath& candidate : s.paths)
+  for (const auto& [pathIndex, i] : candidates)
   {
-    for (std::size_t i = 0; i < candidate.points.size(); ++i)
+    const SkeletonPath& candidate = s.paths[pathIndex];
+    if (candidate.id == self && std::labs(static_cast<long>(i) - selfPoint) <= 2)
     {
-      if (candidate.id == self && std::labs(static_cast<long>(i) - selfPoint) <= 2)
-      {
-        continue;
-      }
-      const bool head = i == 0, tail = i + 1 == candidate.points.size();
-      const ChainEnds& e = ends[static_cast<std::size_t>(candidate.id)];
-      if (candidate.id != self && ((head && e.head.kind == FragmentEnd::Kind::Attached) ||
-                                    (tail && e.tail.kind == FragmentEnd::Kind::Attached)))
-      {
-        continue;
-      }
-      const double di = (candidate.points[i].position_World_mm - p).norm();
-      const bool isEnd = head || tail;
-      const double off = std::abs(candidate.points[i].radius_mm - radius_mm);
-      const bool matches = sameNeighbours(candidate, i, end);
-      if (di < d || (di == d && isEnd && !atEnd) ||
-          (di == d && isEnd == atEnd && off < radiusOff) ||
-          (di == d && isEnd == atEnd && off == radiusOff && matches && !neighboursMatch))
-      {
-        d = di;
-        path = candidate.id;
-        point = static_cast<int>(i);
-        atEnd = isEnd;
-        radiusOff = off;
-        neighboursMatch = matches;
-      }
+      continue;
+    }
+    const bool head = i == 0, tail = i + 1 == candidate.points.size();
+    const ChainEnds& e = ends[static_cast<std::size_t>(candidate.id)];
+    if (candidate.id != self && ((head && e.head.kind == FragmentEnd::Kind::Attached) ||
+                                  (tail && e.tail.kind == FragmentEnd::Kind::Attached)))
+    {
+      continue;
+    }
+    const double di = (candidate.points[i].position_World_mm - p).norm();
+    const bool isEnd = head || tail;
+    const double off = std::abs(candidate.points[i].radius_mm - radius_mm);
+    const bool matches = sameNeighbours(candidate, i, end);
+    if (di < d || (di == d && isEnd && !atEnd) || (di == d && isEnd == atEnd && off < radiusOff) ||
+        (di == d && isEnd == atEnd && off == radiusOff && matches && !neighboursMatch))
+    {
+      d = di;
+      path = candidate.id;
+      point = static_cast<int>(i);
+      atEnd = isEnd;
+      radiusOff = off;
+      neighboursMatch = matches;
     }
   }
   return std::isfinite(d);
@@ -372,18 +379,14 @@ void reportDroppedPoints(const QSkeleton& s,
         .points[static_cast<std::size_t>(j.parentPoint)]
         .position_World_mm);
   }
-  // A segment within the reach of a point has an end within reach + half its length of it,
-  // inside the 27 cells around the point's.
-  double longest = 0.0;
-  for (const auto& [a, b] : segments)
-  {
-    longest = std::max(longest, (b - a).norm());
-  }
-  FragmentPointGrid grid(reach_mm + 0.5 * longest);
+  // Cells from the reach alone (vtouch::SegmentGrid, h18s): sized by the longest segment, a
+  // junction link across the volume made every cell hold most segments (the check was 13.6 s of
+  // the 128^3 raw phantom's 20.8 s stitch on 2 ranks). Which segments are visited, and in what
+  // order, decides nothing: a point is dropped when none is within the reach.
+  SegmentGrid grid(reach_mm);
   for (std::size_t k = 0; k < segments.size(); ++k)
   {
-    grid.add(segments[k].first, { k, 0 });
-    grid.add(segments[k].second, { k, 1 });
+    grid.add(segments[k].first, segments[k].second, k);
   }
   std::uint64_t points = 0;
   for (const SkeletonFragment& f : sent)
@@ -398,9 +401,9 @@ void reportDroppedPoints(const QSkeleton& s,
       checked.tick();
       double best = std::numeric_limits<double>::infinity();
       grid.visitNear(q.position_World_mm,
-        [&](const FragmentPointGrid::Item& item)
+        [&](std::size_t k)
         {
-          const auto& [a, b] = segments[item.fragment];
+          const auto& [a, b] = segments[k];
           best = std::min(best, segmentDistance(q.position_World_mm, a, b));
         });
       if (best > reach_mm)
@@ -423,7 +426,9 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
   report = StitchReport{};
   // Progress shares (h18q): the 128^3 raw phantom's seeded long run on 2 ranks spent 26 % of its
   // 20.8 s stitch resolving the overlap, 9 % attaching ends and 65 % in the coverage check;
-  // the joins between take milliseconds (a check point after each).
+  // the joins between take milliseconds (a check point after each). Since h18s's grids the
+  // check and the attachments take a fraction of that: the shares now overweight them (left
+  // alone, Docs/CLIENT-SERVER.md).
   const ProgressSpan all(&this->progress);
   all.report(0.0);
   std::vector<SkeletonFragment> sent;
@@ -538,6 +543,7 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
   }
   all.report(0.3);
   // Junctions: attached ends by their parent point's position; loops onto their own point 0.
+  SkeletonPointIndex points(s, joinTolerance_mm);
   ProgressCounter attached(all.part(0.3, 0.4), s.paths.size(), kPathPeriod);
   for (std::size_t i = 0; i < s.paths.size(); ++i)
   {
@@ -573,9 +579,18 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
       }
       int parentPath = -1, parentPoint = -1;
       double d = 0.0;
-      const bool found =
-        nearestPoint(s, chainEnds, end, q.radius_mm, path.id, index, parentPath, parentPoint, d);
-      if (!found || d > std::max(joinTolerance_mm, 0.5 * q.radius_mm))
+      const double accepted_mm = std::max(joinTolerance_mm, 0.5 * q.radius_mm);
+      const bool found = nearestPoint(s,
+        points.near(end.position_World_mm, accepted_mm + kIndexMargin_mm),
+        chainEnds,
+        end,
+        q.radius_mm,
+        path.id,
+        index,
+        parentPath,
+        parentPoint,
+        d);
+      if (!found || d > accepted_mm)
       {
         ++report.attachmentsUnresolved;
         report.notes.push_back(describe("unresolved attached end", q.position_World_mm, -1));
@@ -589,6 +604,7 @@ QSkeleton SkeletonStitcher::stitch(const std::vector<SkeletonFragment>& fragment
         q.position_World_mm = s.paths[static_cast<std::size_t>(parentPath)]
                                 .points[static_cast<std::size_t>(parentPoint)]
                                 .position_World_mm;
+        points.moved(i, static_cast<std::size_t>(index));
       }
       Junction j;
       j.childPath = path.id;
