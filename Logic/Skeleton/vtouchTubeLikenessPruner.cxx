@@ -410,6 +410,36 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
     tubeLike = std::move(keptTube);
     width = std::move(keptWidth);
   }
+  // A thin vessel through a blob: the stretch wider than the tube on both sides goes straight
+  // between them (before the free ends: a crossing is not an end run into a blob).
+  if (s.bridgeBlobCrossings)
+  {
+    const std::vector<std::vector<Status>> status = judge(skeleton, tubeLike, voxel_mm, s);
+    BlobCrossingBridge::Sections sections;
+    for (std::size_t i = 0; i < skeleton.paths.size(); ++i)
+    {
+      std::vector<BlobCrossingBridge::Section> judged;
+      for (Status x : status[i])
+      {
+        judged.push_back(x == Status::Unjudged ? BlobCrossingBridge::Section::Unjudged
+                         : x == Status::Tube   ? BlobCrossingBridge::Section::TubeLike
+                                               : BlobCrossingBridge::Section::NotTubeLike);
+      }
+      sections.judged.push_back(std::move(judged));
+    }
+    sections.width_voxels = width;
+    result.blobsBridged = BlobCrossingBridge::bridge(skeleton,
+      sections,
+      voxel_mm,
+      s.blobCrossing,
+      [&tubeLike](std::size_t i, int first, int count, int inserted)
+      {
+        std::vector<bool>& t = tubeLike[i];
+        t.erase(t.begin() + first, t.begin() + first + count);
+        t.insert(t.begin() + first, static_cast<std::size_t>(inserted), true);
+      });
+    width = std::move(sections.width_voxels);
+  }
   // Free ends that run into a blob: back to the tube before it.
   {
     const std::vector<std::vector<Status>> status = judge(skeleton, tubeLike, voxel_mm, s);

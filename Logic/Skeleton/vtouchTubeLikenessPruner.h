@@ -27,9 +27,11 @@
 // a knob on a vessel - and goes too (the coder's spur rule on the branch's own calibre); a piece
 // joined to nothing, unless it is the longest path, must clear twice that (a spur at each end).
 // A free end whose last points are all much wider than the tube just before them (a thin vessel
-// run into a blob) is trimmed back to that tube.
+// run into a blob) is trimmed back to that tube. A stretch wider than the tube on both sides of it
+// (a thin vessel through a blob) goes straight between them (BlobCrossingBridge).
 #pragma once
 
+#include "vtouchBlobCrossingBridge.h"
 #include "vtouchQSkeleton.h"
 #include "vtouchSectionSampler.h"
 #include "vtouchSparseVesselMask.h"
@@ -83,6 +85,10 @@ public:
     double blobExcess_voxels = 1.0;
     double blobExcessFraction = 0.5;
     double blobMinimumWidth_voxels = 1.5;
+    /// A thin vessel through a blob: the stretch wider than the tube on both sides goes straight
+    /// between them (vtouchBlobCrossingBridge.h; session 19); off: left as coded.
+    bool bridgeBlobCrossings = true;
+    BlobCrossingBridge::Settings blobCrossing;
   };
 
   struct Result
@@ -91,6 +97,7 @@ public:
     int bulgesRemoved = 0; ///< of pathsRemoved: bulges
     int endsTrimmed = 0;
     int blobEndsTrimmed = 0; ///< of endsTrimmed: ends run into a blob
+    int blobsBridged = 0;    ///< stretches through a blob replaced by the tube's chord
     std::size_t pointsRemoved = 0;
   };
 

@@ -1,0 +1,212 @@
+// BlobCrossingBridge on hand-made networks (1 mm voxels): a thin vessel's path pulled into a
+// blob's centre goes back onto the chord between the tube on either side; a path joined inside
+// the run keeps its place on the parent; plates, runs without a tube on one side, runs longer
+// than a blob and runs with a path joined inside them are left as they are.
+#include "vtouchBlobCrossingBridge.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace vtouch;
+
+namespace
+{
+using Section = BlobCrossingBridge::Section;
+
+/// A path along x (points every mm, radius 1 mm), with its points first..last pulled `off_mm`
+/// along y (the coder's centre in a blob) and their sections `blob_voxels` wide; the others
+/// are tube-like, 1 voxel wide.
+struct Scene
+{
+  QSkeleton skeleton;
+  BlobCrossingBridge::Sections sections;
+
+  Scene(int n, int first, int last, double off_mm, double blob_voxels)
+  {
+    SkeletonPath path;
+    path.id = 0;
+    std::vector<Section> judged;
+    std::vector<double> width;
+    for (int k = 0; k < n; ++k)
+    {
+      SkeletonPoint p;
+      const bool inBlob = k >= first && k <= last;
+      p.position_World_mm = Vec3{ static_cast<double>(k), inBlob ? off_mm : 0.0, 0.0 };
+      p.tangent_World = Vec3{ 1, 0, 0 };
+      p.radius_mm = inBlob ? 3.0 : 1.0;
+      path.points.push_back(p);
+      judged.push_back(Section::TubeLike);
+      width.push_back(inBlob ? blob_voxels : 1.0);
+    }
+    path.points.front().label = PointLabel::EndPoint;
+    path.points.back().label = PointLabel::EndPoint;
+    skeleton.paths.push_back(path);
+    sections.judged.push_back(judged);
+    sections.width_voxels.push_back(width);
+  }
+
+  /// A second path, joined by its head to point `at` of path 0.
+  void joinChild(int at)
+  {
+    SkeletonPath child;
+    child.id = static_cast<int>(skeleton.paths.size());
+    for (int k = 0; k < 6; ++k)
+    {
+      SkeletonPoint p;
+      p.position_World_mm =
+        skeleton.paths[0].points[static_cast<std::size_t>(at)].position_World_mm +
+        Vec3{ 0, 0, static_cast<double>(k) };
+      p.tangent_World = Vec3{ 0, 0, 1 };
+      p.radius_mm = 1.0;
+      child.points.push_back(p);
+    }
+    Junction j;
+    j.childPath = child.id;
+    j.childEnd = Junction::End::Head;
+    j.parentPath = 0;
+    j.parentPoint = at;
+    child.head.junction = static_cast<int>(skeleton.junctions.size());
+    skeleton.junctions.push_back(j);
+    skeleton.paths[0].points[static_cast<std::size_t>(at)].label = PointLabel::Bifurcation;
+    skeleton.paths.push_back(child);
+    sections.judged.emplace_back(6, Section::TubeLike);
+    sections.width_voxels.emplace_back(6, 1.0);
+  }
+
+  double farthestOffAxis_mm() const
+  {
+    double far = 0.0;
+    for (const SkeletonPoint& p : skeleton.paths[0].points)
+    {
+      far = std::max(far, std::hypot(p.position_World_mm.y, p.position_World_mm.z));
+    }
+    return far;
+  }
+};
+
+constexpr double kVoxel_mm = 1.0;
+} // namespace
+
+TEST(BlobCrossingBridge, ThinVesselThroughABlobGoesOnTheChordBetweenItsTubes)
+{
+  Scene scene(30, 10, 16, 3.0, 4.0);
+  scene.joinChild(24); // beyond the run: its index moves with the new points
+  const Vec3 joinedAt = scene.skeleton.paths[0].points[24].position_World_mm;
+  std::vector<std::array<int, 3>> replaced;
+  const int bridged = BlobCrossingBridge::bridge(scene.skeleton,
+    scene.sections,
+    kVoxel_mm,
+    {},
+    [&](std::size_t path, int first, int count, int inserted)
+    {
+      EXPECT_EQ(path, 0u);
+      replaced.push_back({ first, count, inserted });
+    });
+  ASSERT_EQ(bridged, 1);
+  ASSERT_EQ(replaced.size(), 1u);
+  EXPECT_EQ(replaced[0][0], 10);
+  EXPECT_EQ(replaced[0][1], 7);
+  EXPECT_EQ(replaced[0][2], 7); // points 9 and 17 are 8 mm apart: 7 points in between, 1 mm apart
+  const SkeletonPath& path = scene.skeleton.paths[0];
+  ASSERT_EQ(path.points.size(), 30u);
+  EXPECT_LT(scene.farthestOffAxis_mm(), 1e-9);
+  for (int k = 10; k <= 16; ++k)
+  {
+    const SkeletonPoint& p = path.points[static_cast<std::size_t>(k)];
+    EXPECT_NEAR(p.position_World_mm.x, static_cast<double>(k), 1e-9);
+    EXPECT_NEAR(p.tangent_World.x, 1.0, 1e-12);
+    EXPECT_NEAR(p.radius_mm, 1.0, 1e-12) << "the tube's radius, not the blob's";
+    EXPECT_EQ(scene.sections.judged[0][static_cast<std::size_t>(k)], Section::TubeLike);
+    EXPECT_NEAR(scene.sections.width_voxels[0][static_cast<std::size_t>(k)], 1.0, 1e-12);
+  }
+  const Junction& j = scene.skeleton.junctions[0];
+  const Vec3 parentPoint = path.points[static_cast<std::size_t>(j.parentPoint)].position_World_mm;
+  EXPECT_NEAR((parentPoint - joinedAt).norm(), 0.0, 1e-12);
+  EXPECT_EQ(path.points[static_cast<std::size_t>(j.parentPoint)].label, PointLabel::Bifurcation);
+  // A second run changes nothing.
+  EXPECT_EQ(BlobCrossingBridge::bridge(scene.skeleton, scene.sections, kVoxel_mm, {}), 0);
+}
+
+TEST(BlobCrossingBridge, BranchEnteringABlobFromItsJunctionIsBridgedFromTheZone)
+{
+  // A child path whose head zone (unjudged) reaches the run: the zone's last point anchors it.
+  Scene scene(20, 3, 8, 3.0, 4.0);
+  scene.joinChild(15); // a path on the tube beyond the run
+  for (int k = 0; k < 3; ++k)
+  {
+    scene.sections.judged[0][static_cast<std::size_t>(k)] = Section::Unjudged;
+  }
+  // Path 0's head joined to another path (a junction zone at its head).
+  SkeletonPath parent;
+  parent.id = 2;
+  for (int k = -5; k <= 5; ++k)
+  {
+    SkeletonPoint p;
+    p.position_World_mm = Vec3{ 0, static_cast<double>(k), 0 };
+    p.tangent_World = Vec3{ 0, 1, 0 };
+    p.radius_mm = 3.0;
+    parent.points.push_back(p);
+  }
+  Junction j;
+  j.childPath = 0;
+  j.childEnd = Junction::End::Head;
+  j.parentPath = 2;
+  j.parentPoint = 5;
+  scene.skeleton.paths[0].head.junction = static_cast<int>(scene.skeleton.junctions.size());
+  scene.skeleton.junctions.push_back(j);
+  scene.skeleton.paths.push_back(parent);
+  scene.sections.judged.emplace_back(11, Section::TubeLike);
+  scene.sections.width_voxels.emplace_back(11, 3.0);
+  ASSERT_EQ(BlobCrossingBridge::bridge(scene.skeleton, scene.sections, kVoxel_mm, {}), 1);
+  EXPECT_LT(scene.farthestOffAxis_mm(), 1e-9);
+  EXPECT_EQ(scene.skeleton.paths[0].points.size(), 20u);
+}
+
+TEST(BlobCrossingBridge, PlatesShortTubesLongRunsAndJoinedRunsAreKept)
+{
+  const auto bridges = [](Scene& scene)
+  { return BlobCrossingBridge::bridge(scene.skeleton, scene.sections, kVoxel_mm, {}); };
+  {
+    SCOPED_TRACE("a plate: most of the run's sections in a plate's band");
+    Scene scene(30, 10, 16, 3.0, 4.0);
+    for (int k = 10; k <= 13; ++k)
+    {
+      scene.sections.judged[0][static_cast<std::size_t>(k)] = Section::NotTubeLike;
+    }
+    EXPECT_EQ(bridges(scene), 0);
+  }
+  {
+    SCOPED_TRACE("two tube-like points after the run (a plate's face, or noise): no tube there");
+    Scene scene(19, 10, 16, 3.0, 4.0);
+    EXPECT_EQ(bridges(scene), 0);
+  }
+  {
+    SCOPED_TRACE("a tube side broken by a plate's section");
+    Scene scene(30, 10, 16, 3.0, 4.0);
+    scene.sections.judged[0][18] = Section::NotTubeLike;
+    EXPECT_EQ(bridges(scene), 0);
+  }
+  {
+    SCOPED_TRACE("not wider than the tube by the blob criterion");
+    Scene scene(30, 10, 16, 3.0, 1.9);
+    EXPECT_EQ(bridges(scene), 0);
+  }
+  {
+    SCOPED_TRACE("longer than a blob: 3 x its widest section + 2 voxels");
+    Scene scene(40, 5, 25, 3.0, 4.0);
+    EXPECT_EQ(bridges(scene), 0);
+  }
+  {
+    SCOPED_TRACE("another path joined inside the run");
+    Scene scene(30, 10, 16, 3.0, 4.0);
+    scene.joinChild(13);
+    EXPECT_EQ(bridges(scene), 0);
+  }
+  {
+    SCOPED_TRACE("two points wide: noise, not a blob");
+    Scene scene(30, 10, 11, 3.0, 4.0);
+    EXPECT_EQ(bridges(scene), 0);
+  }
+}
