@@ -114,11 +114,13 @@ double radiusNearEnd(const RawSkeletonPath& path,
 EndStage::EndStage(const VoxelGrid& g,
   double minimumBranchLength_radii,
   SkeletonDraft& d,
-  std::size_t first)
+  std::size_t first,
+  const std::vector<float>* ss)
   : grid(g)
   , minimumBranchLength(minimumBranchLength_radii)
   , draft(d)
   , firstPath(first)
+  , ss_mm(ss)
 {
 }
 
@@ -157,15 +159,26 @@ void EndStage::pruneStubEnds()
       }
       return length;
     };
+    // The root's own end: its voxel in the SS code's first band.
+    const auto atRoot = [&](int end)
+    {
+      if (ss_mm == nullptr)
+      {
+        return false;
+      }
+      const auto& v = path.voxels[static_cast<std::size_t>(end)];
+      const std::uint64_t lin = grid.linOf(v[0], v[1], v[2]);
+      return grid.mask.test(lin) &&
+             static_cast<double>((*ss_mm)[grid.mask.rank(lin)]) < grid.bandWidth;
+    };
     const auto isStub = [&](int junctionPoint, int end)
     {
       // The vessel's radius there: the junction can be on a strand of noise on the wall.
+      const double radius = std::max(nearbyRadius(path, junctionPoint),
+        vesselRadiusNear(path, junctionPoint, 2.0 * grid.maxSpacing));
+      const double spur = (atRoot(end) ? 1.0 : minimumBranchLength) * radius;
       return junctionPoint != end &&
-             stubLength(junctionPoint, end) <
-               std::max(minimumBranchLength *
-                          std::max(nearbyRadius(path, junctionPoint),
-                            vesselRadiusNear(path, junctionPoint, 2.0 * grid.maxSpacing)),
-                 2.0 * grid.bandWidth);
+             stubLength(junctionPoint, end) < std::max(spur, 2.0 * grid.bandWidth);
     };
     if (path.tailJunction < 0 && isStub(last, n - 1))
     {

@@ -23,10 +23,13 @@ namespace skeleton
 class EndStage
 {
 public:
+  /// `ss_mm`: the SS code (VoxelCodes::ss, by the mask's rank), for the root's own end (see
+  /// pruneStubEnds); null: every end is judged alike.
   EndStage(const VoxelGrid& grid,
     double minimumBranchLength,
     SkeletonDraft& draft,
-    std::size_t firstPath);
+    std::size_t firstPath,
+    const std::vector<float>* ss_mm = nullptr);
 
   /// pruneStubEnds(), then trimClosedEnds().
   void run();
@@ -35,6 +38,12 @@ public:
   /// beyond the outermost point another path attaches to is a spur of its own: cut at that point.
   /// Where the second front of a ring is attached next to the first trace's start, the start's
   /// last voxels would otherwise stick out as an end point of a vessel that has none.
+  /// The root's own end (its voxel in the SS code's first band: the seed the user picked, or the
+  /// automatic root's end cap) is cut only when it goes on less than one local radius (it lies
+  /// inside the junction's lumen): the network reaches the point it was grown from, where a
+  /// branch (a blob, a side vessel) joins the root's vessel within a spur's length of it (128^3
+  /// seed 28, session 19: the root's first 9.4 voxels, radius 4, were cut). The field is the
+  /// single run's on every rank (globalSs_mm), so a distributed run keeps the same ends.
   void pruneStubEnds();
 
   /// A vessel that ends inside the volume ends in a cap; its centerline ends at the cap's centre,
@@ -67,7 +76,8 @@ private:
   const VoxelGrid& grid;
   double minimumBranchLength; // in local radii
   SkeletonDraft& draft;
-  std::size_t firstPath; // the component's first path
+  std::size_t firstPath;           // the component's first path
+  const std::vector<float>* ss_mm; // the SS code by mask rank, or null
 };
 
 } // namespace skeleton

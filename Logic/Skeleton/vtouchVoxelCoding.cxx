@@ -149,7 +149,7 @@ void VoxelCoder::Impl::traceComponent()
     return;
   }
   skeleton::LoopStage(tracer, par.minimumBranchLength, firstPath, globalField).run();
-  skeleton::EndStage(grid, par.minimumBranchLength, draft, firstPath).run();
+  skeleton::EndStage(grid, par.minimumBranchLength, draft, firstPath, &codes.ss).run();
   skeleton::GeometryStage(draft.skeleton, firstPath, grid.minSpacing).run();
 }
 

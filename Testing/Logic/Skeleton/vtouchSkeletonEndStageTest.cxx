@@ -171,4 +171,41 @@ TEST(SkeletonEndStage, StubBeyondTheLastJunctionIsCut)
   EXPECT_EQ(s.junctions[0].parentPoint, 10);
 }
 
+TEST(SkeletonEndStage, TheRootsOwnEndIsAStubOnlyWithinOneRadiusOfTheJunction)
+{
+  // A trunk on the capsule's axis (radius 4 mm) from x = 10, a branch joined at x = 20, the
+  // trunk's tail the root's own end (its voxel in the SS code's first band): the seed the user
+  // picked. 9 mm past the junction is under a spur's 10 mm but over one radius: kept; 2 mm is
+  // inside the junction's lumen: cut. Without the SS code the 9 mm are cut as any spur.
+  const SparseVesselMask mask = capsule();
+  const auto run = [&mask](int trunkPoints, bool withCode)
+  {
+    Pipeline p(mask);
+    RawSkeleton& s = p.draft.skeleton;
+    RawSkeletonPath trunk;
+    for (int i = 0; i < trunkPoints; ++i)
+    {
+      trunk.voxels.push_back({ 10 + i, 10, 10 });
+      trunk.center_mm.push_back({ 10.0 + i, 10.0, 10.0 });
+      trunk.radius_mm.push_back(4.0);
+    }
+    s.paths.push_back(trunk);
+    RawSkeletonPath branch;
+    branch.voxels = { { 20, 10, 10 }, { 20, 11, 10 } };
+    branch.center_mm = { { 20, 10, 10 }, { 20, 11, 10 } };
+    branch.radius_mm = { 4.0, 4.0 };
+    branch.headJunction = 0;
+    s.paths.push_back(branch);
+    s.junctions.push_back({ 1, false, 0, 10 });
+    p.draft.closedEnd = { { false, false }, { false, false } };
+    std::vector<float> ss(mask.vesselCount(), 100.0F);
+    ss[p.rank(10 + trunkPoints - 1, 10, 10)] = 0.0F;
+    EndStage(p.grid, 2.5, p.draft, 0, withCode ? &ss : nullptr).pruneStubEnds();
+    return s.paths[0].center_mm.size();
+  };
+  EXPECT_EQ(run(20, true), 20U);  // the root's end, 9 mm past the junction: kept
+  EXPECT_EQ(run(20, false), 11U); // any end: a spur, cut at the junction
+  EXPECT_EQ(run(13, true), 11U);  // the root's end, 2 mm past it: inside the junction, cut
+}
+
 } // namespace
