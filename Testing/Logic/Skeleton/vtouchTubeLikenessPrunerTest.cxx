@@ -476,3 +476,66 @@ TEST(TubeLikenessPruner, TrimsAThinVesselsEndRunIntoABallAndKeepsATaperedVesselW
   EXPECT_EQ(rc.blobEndsTrimmed, 0);
   EXPECT_EQ(t.pointCount(), coneBefore);
 }
+
+TEST(TubeLikenessPruner, RemovesAPlatePieceThatCarriesOnlyABridgeBackToTheVessel)
+{
+  // What the coder drew on 128^3 seed 38 noise 35 (session 19): a vessel (radius 2.5, along x), a
+  // thin tube (radius 1.5) from it up to a plate 4 voxels thick, and a piece on the plate's
+  // mid-sheet. The tube is joined at both ends: to the vessel and to the piece's first point (a
+  // bridge). The piece is a plate's path; its only child stays joined to the vessel without it,
+  // so it goes (before, its child kept it, and the bridge, joined at both ends, stayed too). The
+  // tube is then a branch of the vessel ending free in the plate, as short as a bulge of the
+  // plate's section (2.5 x its widest), and goes in the next round.
+  const Dims dims{ 72, 56, 40 };
+  const Vec3 a{ 3, 28, 10 }, b{ 68, 28, 10 };
+  const Vec3 foot{ 35, 28, 10 }, top{ 35, 28, 25.5 }, far{ 35, 44, 25.5 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      const bool onPlate =
+        p.z >= 24 && p.z <= 27 && p.x >= 20 && p.x <= 50 && p.y >= 20 && p.y <= 52;
+      return segmentDistance(p, a, b) <= 2.5 || segmentDistance(p, foot, top) <= 1.5 || onPlate;
+    });
+  QSkeleton s;
+  s.paths.push_back(handPath({ a + Vec3{ 2, 0, 0 }, b - Vec3{ 2, 0, 0 } }, 2.5)); // the vessel
+  s.paths.push_back(handPath({ top, far }, 2.0));                                 // the piece
+  s.paths.push_back(handPath({ top, foot }, 1.5));                                // the bridge
+  for (std::size_t i = 0; i < s.paths.size(); ++i)
+  {
+    s.paths[i].id = static_cast<int>(i);
+  }
+  const int footPoint = 30; // the vessel's point at x = 35
+  ASSERT_NEAR(s.paths[0].points[footPoint].position_World_mm.x, 35.0, 1e-9);
+  Junction toPiece;
+  toPiece.childPath = 2;
+  toPiece.childEnd = Junction::End::Head;
+  toPiece.parentPath = 1;
+  toPiece.parentPoint = 0;
+  Junction toVessel;
+  toVessel.childPath = 2;
+  toVessel.childEnd = Junction::End::Tail;
+  toVessel.parentPath = 0;
+  toVessel.parentPoint = footPoint;
+  s.junctions = { toPiece, toVessel };
+  s.paths[2].head.junction = 0;
+  s.paths[2].tail.junction = 1;
+  s.paths[1].points.front().label = PointLabel::Bifurcation;
+  s.paths[0].points[footPoint].label = PointLabel::Bifurcation;
+  s.paths[2].points.back().position_World_mm = s.paths[0].points[footPoint].position_World_mm;
+  ASSERT_EQ(s.validate(), "");
+  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(r.pathsRemoved, 2);
+  EXPECT_EQ(r.bulgesRemoved, 1);
+  ASSERT_EQ(s.paths.size(), 1u);
+  for (const SkeletonPath& path : s.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      EXPECT_LT(q.position_World_mm.z, 12.0) << "a point on the plate or the bridge is left";
+    }
+  }
+  EXPECT_GE(coverage(s, a, b, 4.0, 1.0), 0.95); // the vessel stays, whole
+  EXPECT_TRUE(s.junctions.empty());
+  EXPECT_EQ(s.paths[0].points[footPoint].label, PointLabel::Ordinary);
+}
