@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 using namespace vtouch;
@@ -166,47 +167,57 @@ TEST(BlobCrossingBridge, BranchEnteringABlobFromItsJunctionIsBridgedFromTheZone)
 
 TEST(BlobCrossingBridge, PlatesShortTubesLongRunsAndJoinedRunsAreKept)
 {
-  const auto bridges = [](Scene& scene)
-  { return BlobCrossingBridge::bridge(scene.skeleton, scene.sections, kVoxel_mm, {}); };
+  struct Case
   {
-    SCOPED_TRACE("a plate: most of the run's sections in a plate's band");
-    Scene scene(30, 10, 16, 3.0, 4.0);
-    for (int k = 10; k <= 13; ++k)
+    const char* what;
+    int n, first, last;
+    double blob_voxels;
+    std::function<void(Scene&)> change;
+  };
+  const auto plate = [](Scene& scene, int from, int to)
+  {
+    for (int k = from; k <= to; ++k)
     {
       scene.sections.judged[0][static_cast<std::size_t>(k)] = Section::NotTubeLike;
     }
-    EXPECT_EQ(bridges(scene), 0);
-  }
+  };
+  const std::vector<Case> cases{
+    { "a plate: most of the run's sections in a plate's band",
+      30,
+      10,
+      16,
+      4.0,
+      [&](Scene& scene) { plate(scene, 10, 13); } },
+    { "two tube-like points after the run (a plate's face, or noise): no tube there",
+      19,
+      10,
+      16,
+      4.0,
+      nullptr },
+    { "a tube side broken by a plate's section",
+      30,
+      10,
+      16,
+      4.0,
+      [&](Scene& scene) { plate(scene, 18, 18); } },
+    { "not wider than the tube by the blob criterion", 30, 10, 16, 1.9, nullptr },
+    { "longer than a blob: 3 x its widest section + 2 voxels", 40, 5, 25, 4.0, nullptr },
+    { "another path joined inside the run",
+      30,
+      10,
+      16,
+      4.0,
+      [](Scene& scene) { scene.joinChild(13); } },
+    { "two points wide: noise, not a blob", 30, 10, 11, 4.0, nullptr },
+  };
+  for (const Case& c : cases)
   {
-    SCOPED_TRACE("two tube-like points after the run (a plate's face, or noise): no tube there");
-    Scene scene(19, 10, 16, 3.0, 4.0);
-    EXPECT_EQ(bridges(scene), 0);
-  }
-  {
-    SCOPED_TRACE("a tube side broken by a plate's section");
-    Scene scene(30, 10, 16, 3.0, 4.0);
-    scene.sections.judged[0][18] = Section::NotTubeLike;
-    EXPECT_EQ(bridges(scene), 0);
-  }
-  {
-    SCOPED_TRACE("not wider than the tube by the blob criterion");
-    Scene scene(30, 10, 16, 3.0, 1.9);
-    EXPECT_EQ(bridges(scene), 0);
-  }
-  {
-    SCOPED_TRACE("longer than a blob: 3 x its widest section + 2 voxels");
-    Scene scene(40, 5, 25, 3.0, 4.0);
-    EXPECT_EQ(bridges(scene), 0);
-  }
-  {
-    SCOPED_TRACE("another path joined inside the run");
-    Scene scene(30, 10, 16, 3.0, 4.0);
-    scene.joinChild(13);
-    EXPECT_EQ(bridges(scene), 0);
-  }
-  {
-    SCOPED_TRACE("two points wide: noise, not a blob");
-    Scene scene(30, 10, 11, 3.0, 4.0);
-    EXPECT_EQ(bridges(scene), 0);
+    SCOPED_TRACE(c.what);
+    Scene scene(c.n, c.first, c.last, 3.0, c.blob_voxels);
+    if (c.change)
+    {
+      c.change(scene);
+    }
+    EXPECT_EQ(BlobCrossingBridge::bridge(scene.skeleton, scene.sections, kVoxel_mm, {}), 0);
   }
 }
