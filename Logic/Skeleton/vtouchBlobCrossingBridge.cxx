@@ -40,11 +40,20 @@ Side sideOf(const SkeletonPath& path,
   {
     return side;
   }
+  // The tube's points from the anchor on. A junction's zone after the first of them is stepped
+  // over: a branch leaving the tube there does not end it (128^3 seed 47 noise 35, session 20).
   std::vector<double> widths, radii;
-  for (int q = anchor; q >= 0 && q < n && static_cast<int>(widths.size()) < s.tubePoints &&
-                       judged[static_cast<std::size_t>(q)] == Section::TubeLike;
-       q += dir)
+  for (int q = anchor; q >= 0 && q < n && static_cast<int>(widths.size()) < s.tubePoints; q += dir)
   {
+    const Section j = judged[static_cast<std::size_t>(q)];
+    if (j == Section::Unjudged && !widths.empty())
+    {
+      continue;
+    }
+    if (j != Section::TubeLike)
+    {
+      break;
+    }
     widths.push_back(width[static_cast<std::size_t>(q)]);
     radii.push_back(path.points[static_cast<std::size_t>(q)].radius_mm);
   }

@@ -12,7 +12,8 @@
 // sides - section radius s > t + max(excess_voxels, excessFraction t) and s >= minimumWidth_voxels
 // (TubeLikenessPruner's blob criterion), t the larger of the median section radii of the
 // >= minimumTubePoints (at most tubePoints) consecutive tube-like points just before and just
-// after the run, the points next to the run not wider than the tube - with under plateFraction of
+// after the run (a junction's zone after the first of them stepped over: a branch leaving the
+// tube does not end it), the points next to the run not wider than the tube - with under plateFraction of
 // its sections in a plate's band (TubeLikenessPruner), no other path joined inside it, and no
 // longer (along the path) than
 // maximumLengthWidths times its widest section + 2 voxels (a blob's size, not a plate's length),

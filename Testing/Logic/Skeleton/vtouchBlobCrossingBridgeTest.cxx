@@ -165,6 +165,22 @@ TEST(BlobCrossingBridge, BranchEnteringABlobFromItsJunctionIsBridgedFromTheZone)
   EXPECT_EQ(scene.skeleton.paths[0].points.size(), 20u);
 }
 
+TEST(BlobCrossingBridge, TheTubeSideGoesOnAcrossABranchsJunctionZone)
+{
+  // A thin vessel leaves the blob and a branch leaves it one point later (128^3 seed 47 noise
+  // 35, session 20): one tube-like point, the branch's junction zone, then the tube again. The
+  // zone does not end the tube; before session 20 the run was kept (15 points 2-5 voxels off).
+  Scene scene(30, 10, 16, 3.0, 4.0);
+  scene.joinChild(19);
+  for (int k = 18; k <= 20; ++k)
+  {
+    scene.sections.judged[0][static_cast<std::size_t>(k)] = Section::Unjudged;
+  }
+  ASSERT_EQ(BlobCrossingBridge::bridge(scene.skeleton, scene.sections, kVoxel_mm, {}), 1);
+  EXPECT_LT(scene.farthestOffAxis_mm(), 1e-9);
+  EXPECT_EQ(scene.skeleton.junctions[0].parentPoint, 19) << "the branch stays where it joined";
+}
+
 TEST(BlobCrossingBridge, PlatesShortTubesLongRunsAndJoinedRunsAreKept)
 {
   struct Case
@@ -194,6 +210,16 @@ TEST(BlobCrossingBridge, PlatesShortTubesLongRunsAndJoinedRunsAreKept)
       16,
       4.0,
       nullptr },
+    { "one tube-like point, then a junction's zone to the path's end: no tube there",
+      20,
+      10,
+      16,
+      4.0,
+      [](Scene& scene)
+      {
+        scene.sections.judged[0][18] = Section::Unjudged;
+        scene.sections.judged[0][19] = Section::Unjudged;
+      } },
     { "a tube side broken by a plate's section",
       30,
       10,
