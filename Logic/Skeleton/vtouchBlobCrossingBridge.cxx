@@ -149,21 +149,21 @@ BlobCrossingBridge::Crossing BlobCrossingBridge::findCrossing(const QSkeleton& s
       }
       const double tube =
         std::max(before.tube ? before.tube_voxels : 0.0, after.tube ? after.tube_voxels : 0.0);
-      // The run ends where the tube resumes: the tube's points next to it are not wide.
+      // The run ends where the tube resumes: the tube's points next to it are not wide. A plate's
+      // run is left to the pruner's plate rules unless the tube goes on on both sides of it (a
+      // thin vessel through or along a plate, session 20).
       const double bound = threshold(tube, s);
-      if (!(narrowest > bound) || plate >= s.plateFraction * (b - a + 1) ||
+      const bool plateRun = plate >= s.plateFraction * (b - a + 1);
+      if (!(narrowest > bound) || (plateRun && !(before.tube && after.tube)) ||
           (after.tube && width[static_cast<std::size_t>(b + 1)] > bound) ||
           (before.tube && width[static_cast<std::size_t>(a - 1)] > bound))
       {
         continue;
       }
-      double length_mm = 0.0;
-      for (int q = a; q <= b + 1; ++q)
-      {
-        length_mm += (path.points[static_cast<std::size_t>(q)].position_World_mm -
-                      path.points[static_cast<std::size_t>(q - 1)].position_World_mm)
-                       .norm();
-      }
+      // The chord the bridge draws, not the coder's path (which detours to the blob's centre).
+      const double length_mm = (path.points[static_cast<std::size_t>(b + 1)].position_World_mm -
+                                 path.points[static_cast<std::size_t>(a - 1)].position_World_mm)
+                                  .norm();
       if (length_mm > (s.maximumLengthWidths * widest + 2.0) * voxel_mm)
       {
         break; // longer than a blob: a plate or a wide structure (the other rules' business)

@@ -13,12 +13,12 @@
 // (TubeLikenessPruner's blob criterion), t the larger of the median section radii of the
 // >= minimumTubePoints (at most tubePoints) consecutive tube-like points just before and just
 // after the run (a junction's zone after the first of them stepped over: a branch leaving the
-// tube does not end it), the points next to the run not wider than the tube - with under plateFraction of
-// its sections in a plate's band (TubeLikenessPruner), no other path joined inside it, and no
-// longer (along the path) than
-// maximumLengthWidths times its widest section + 2 voxels (a blob's size, not a plate's length),
-// is replaced by points every voxel on the straight line between the points just before and
-// just after it, with the tube's radius. At a path's end joined to another path whose junction
+// tube does not end it), the points next to the run not wider than the tube - with under
+// plateFraction of its sections in a plate's band (TubeLikenessPruner) unless both sides are
+// the tube (a thin vessel through or along a plate), no other path joined inside it, and its
+// chord (between the points just before and just after it) no longer than maximumLengthWidths
+// times its widest section + 2 voxels (a blob's size, not a plate's length), is replaced by
+// points every voxel on that chord, with the tube's radius. At a path's end joined to another path whose junction
 // zone (unjudged points) reaches the run, the zone's last point is that side's anchor and the
 // tube's radius is the other side's alone (the vessel enters the blob where it leaves its parent).
 #pragma once
@@ -44,9 +44,11 @@ public:
     double excess_voxels = 1.0; ///< s > t + max(excess_voxels, excessFraction t)
     double excessFraction = 0.5;
     double minimumWidth_voxels = 1.5;
-    double maximumLengthWidths = 3.0; ///< run length <= this x its widest section + 2 voxels
+    /// The chord between the run's anchors <= this x its widest section + 2 voxels.
+    double maximumLengthWidths = 3.0;
     /// A run with at least this share of not tube-like sections is a plate (the pruner's rules
-    /// remove or trim it), not a blob.
+    /// remove or trim it), not a blob - unless the tube goes on on both sides of it (a thin
+    /// vessel through or along a plate: bridged too, session 20).
     double plateFraction = 0.5;
   };
 
