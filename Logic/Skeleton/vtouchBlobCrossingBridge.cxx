@@ -162,8 +162,8 @@ BlobCrossingBridge::Crossing BlobCrossingBridge::findCrossing(const QSkeleton& s
       }
       // The chord the bridge draws, not the coder's path (which detours to the blob's centre).
       const double length_mm = (path.points[static_cast<std::size_t>(b + 1)].position_World_mm -
-                                 path.points[static_cast<std::size_t>(a - 1)].position_World_mm)
-                                  .norm();
+                                path.points[static_cast<std::size_t>(a - 1)].position_World_mm)
+                                 .norm();
       if (length_mm > (s.maximumLengthWidths * widest + 2.0) * voxel_mm)
       {
         break; // longer than a blob: a plate or a wide structure (the other rules' business)

@@ -18,9 +18,10 @@
 // the tube (a thin vessel through or along a plate), no other path joined inside it, and its
 // chord (between the points just before and just after it) no longer than maximumLengthWidths
 // times its widest section + 2 voxels (a blob's size, not a plate's length), is replaced by
-// points every voxel on that chord, with the tube's radius. At a path's end joined to another path whose junction
-// zone (unjudged points) reaches the run, the zone's last point is that side's anchor and the
-// tube's radius is the other side's alone (the vessel enters the blob where it leaves its parent).
+// points every voxel on that chord, with the tube's radius. At a path's end joined to another path
+// whose junction zone (unjudged points) reaches the run, the zone's last point is that side's
+// anchor and the tube's radius is the other side's alone (the vessel enters the blob where it
+// leaves its parent).
 #pragma once
 
 #include "vtouchQSkeleton.h"

@@ -1,5 +1,7 @@
 #include "vtouchTubeLikenessPruner.h"
 
+#include "vtouchBulgeByReach.h"
+
 #include <algorithm>
 #include <utility>
 #include <cmath>
@@ -398,6 +400,20 @@ TubeLikenessPruner::Result TubeLikenessPruner::prune(QSkeleton& skeleton,
         const bool piece = path.head.junction < 0 && path.tail.junction < 0 && !hasChild[i] &&
                            length < longestPath_mm;
         bulge = widest > 0.0 && length < (piece ? 2.0 : 1.0) * s.bulgeFactor * widest * voxel_mm;
+        // A branch into a blob: the coder's path hooks about the blob's centre, so its length
+        // along the path clears the bound; how far it reaches from its junction, against its
+        // free end's own section (a blob's path ends at its widest, a thin branch at its
+        // thinnest), does not (session 20).
+        if (!piece && (path.head.junction >= 0) != (path.tail.junction >= 0))
+        {
+          std::vector<char> judged(path.points.size());
+          for (std::size_t k = 0; k < judged.size(); ++k)
+          {
+            judged[k] = status[i][k] != Status::Unjudged;
+          }
+          bulge = bulge ||
+                  isBulgeByReach(path, judged, width[i], s.bulgeFactor, s.bulgeEndPoints, voxel_mm);
+        }
         result.bulgesRemoved += bulge && !carries[i] ? 1 : 0;
       }
       if (!carries[i] && (plate[i] || (unjudged[i] && onPlate) || bulge))

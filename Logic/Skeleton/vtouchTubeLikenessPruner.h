@@ -74,6 +74,10 @@ public:
     /// spur length (MinimumBranchLength, 2.5 radii of the vessel joined) on the branch's own. A
     /// path free at both ends (not the longest) must clear twice this.
     double bulgeFactor = 2.5;
+    /// A branch whose farthest point from its junction is under bulgeFactor times its free
+    /// end's section radius (the median of this many judged points at that end) is a bulge too:
+    /// the coder's path hooked about a blob's centre (session 20). 0 = off.
+    int bulgeEndPoints = 3;
     /// A free end that runs into a blob: the end's last points (>= minimumTrimPoints judged) all
     /// wider than the tube just before them, s > t + max(blobExcess_voxels, blobExcessFraction
     /// t) and s >= blobMinimumWidth_voxels, t the median section radius of the blobTubePoints

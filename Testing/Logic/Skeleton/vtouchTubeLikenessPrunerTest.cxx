@@ -539,3 +539,77 @@ TEST(TubeLikenessPruner, RemovesAPlatePieceThatCarriesOnlyABridgeBackToTheVessel
   EXPECT_TRUE(s.junctions.empty());
   EXPECT_EQ(s.paths[0].points[footPoint].label, PointLabel::Ordinary);
 }
+
+TEST(TubeLikenessPruner, RemovesABranchHookedAboutABlobsCentreAndKeepsAShortThinBranch)
+{
+  // What the coder drew on 128^3 seeds 18, 32 and 43 (session 20, none tuned on): a branch from
+  // a vessel into a blob touching it that runs past the blob's centre and hooks back (where the
+  // volume's face or a plate bends the distance map's ridge). Along the path it is longer than
+  // 2.5 times its widest section, so the length rule keeps it; it reaches no farther from its
+  // junction than the parent's radius and the blob's, which its free end's section (the blob's
+  // centre) measures. A thin branch of the same vessel, 10 voxels long, reaches far beyond its
+  // own end's section and stays.
+  const Dims dims{ 72, 64, 32 };
+  const Vec3 a{ 3, 28, 12 }, b{ 68, 28, 12 };
+  const Vec3 ball{ 24, 28 + 2.5 + 5.0 - 0.5, 12 };
+  const Vec3 fork{ 50, 28, 12 }, tip{ 50, 18, 12 };
+  const SparseVesselMask mask = makeMask(dims,
+    [&](const Vec3& p)
+    {
+      return segmentDistance(p, a, b) <= 2.5 || (p - ball).norm() <= 5.0 ||
+             segmentDistance(p, fork, tip) <= 1.2;
+    });
+  const auto scene = [&]
+  {
+    QSkeleton s;
+    s.paths.push_back(handPath({ a + Vec3{ 2, 0, 0 }, b - Vec3{ 2, 0, 0 } }, 2.5));
+    s.paths.push_back(handPath(
+      { Vec3{ 24, 28, 12 }, Vec3{ 24, 39, 12 }, Vec3{ 26, 39, 12 }, Vec3{ 26, 35, 12 }, ball },
+      3.0)); // the hook: 18.5 voxels along the path, 11.2 at most from its junction
+    s.paths.push_back(handPath({ fork, tip }, 1.2));
+    for (std::size_t i = 0; i < s.paths.size(); ++i)
+    {
+      s.paths[i].id = static_cast<int>(i);
+    }
+    for (const int child : { 1, 2 })
+    {
+      const int at = child == 1 ? 19 : 45; // the vessel's points at x = 24 and x = 50
+      Junction j;
+      j.childPath = child;
+      j.childEnd = Junction::End::Head;
+      j.parentPath = 0;
+      j.parentPoint = at;
+      s.paths[static_cast<std::size_t>(child)].head.junction = static_cast<int>(s.junctions.size());
+      s.junctions.push_back(j);
+      s.paths[0].points[static_cast<std::size_t>(at)].label = PointLabel::Bifurcation;
+      s.paths[static_cast<std::size_t>(child)].points.front().label = PointLabel::Bifurcation;
+      s.paths[static_cast<std::size_t>(child)].points.front().position_World_mm =
+        s.paths[0].points[static_cast<std::size_t>(at)].position_World_mm;
+    }
+    return s;
+  };
+  QSkeleton s = scene();
+  ASSERT_NEAR(s.paths[0].points[19].position_World_mm.x, 24.0, 1e-9);
+  ASSERT_NEAR(s.paths[0].points[45].position_World_mm.x, 50.0, 1e-9);
+  ASSERT_EQ(s.validate(), "");
+  const auto r = TubeLikenessPruner::prune(s, TubeLikenessPruner::foreground(mask), kUnit);
+  EXPECT_EQ(s.validate(), "");
+  EXPECT_EQ(r.bulgesRemoved, 1);
+  for (const SkeletonPath& path : s.paths)
+  {
+    for (const SkeletonPoint& q : path.points)
+    {
+      EXPECT_LT(q.position_World_mm.y, 31.0) << "a point of the hook into the blob is left";
+    }
+  }
+  EXPECT_GE(coverage(s, a + Vec3{ 2, 0, 0 }, b - Vec3{ 2, 0, 0 }, 4.0, 1.0), 0.95);
+  EXPECT_GE(coverage(s, fork, tip, 4.0, 1.0), 0.95) << "the thin branch is no bulge";
+  // By the length rule alone (the reach off) the hook stays: the rule is what removes it.
+  QSkeleton byLength = scene();
+  TubeLikenessPruner::Settings lengthOnly;
+  lengthOnly.bulgeEndPoints = 0;
+  const auto kept =
+    TubeLikenessPruner::prune(byLength, TubeLikenessPruner::foreground(mask), kUnit, lengthOnly);
+  EXPECT_EQ(kept.bulgesRemoved, 0);
+  EXPECT_EQ(byLength.paths.size(), 3u);
+}
