@@ -542,7 +542,7 @@ TEST(TubeLikenessPruner, RemovesAPlatePieceThatCarriesOnlyABridgeBackToTheVessel
 
 TEST(TubeLikenessPruner, RemovesABranchHookedAboutABlobsCentreAndKeepsAShortThinBranch)
 {
-  // What the coder drew on 128^3 seeds 18, 32 and 43 (session 20, none tuned on): a branch from
+  // What the coder drew on 128^3 seeds 18, 32 and 12 (sessions 18-20, none tuned on): a branch from
   // a vessel into a blob touching it that runs past the blob's centre and hooks back (where the
   // volume's face or a plate bends the distance map's ridge). Along the path it is longer than
   // 2.5 times its widest section, so the length rule keeps it; it reaches no farther from its
