@@ -112,6 +112,7 @@ private:
   // --- Cutting (vtouchTubeSectionRetracerCut.cxx) ---
   void planClutterCut(int j, int k, const StretchTracks& tracks, std::vector<RetracePlan>& plans);
   bool betweenVessels(int j, int k, double tube_voxels) const;
+  int loopChordEnd(int j, int k) const;
 
   // --- Applying (vtouchTubeSectionRetracerApply.cxx) ---
   void applyPlans(std::vector<RetracePlan>& plans);

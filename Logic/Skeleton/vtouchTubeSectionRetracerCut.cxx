@@ -73,6 +73,55 @@ bool PathRetracer::betweenVessels(int j, int k, double tube_voxels) const
   return true;
 }
 
+/// A loop's chord (session 20; project rule): the stretch [j, k) runs from the path's joined end
+/// (the anchor just before or after it) to a point m where a bridge joins - a path whose other end
+/// is joined to the same parent as that end - so the stretch, the bridge and the parent close a
+/// loop. The coder draws one where a vessel runs along a slab of clutter and a branch of it is
+/// coded through the slab to a point farther up the vessel (128^3 seed 55 noise 35: 14 points 2-6
+/// voxels off, the loop's two sides both in the merged region). Cut up to the bridge, the path
+/// stays joined to the network through it. Returns m, or -1.
+int PathRetracer::loopChordEnd(int j, int k) const
+{
+  // The joined end is an anchor itself: the stretch starts just after it (or ends just before).
+  const bool head = j <= 1 && path.head.junction >= 0;
+  const bool tail = k >= n - 1 && path.tail.junction >= 0;
+  if (head == tail)
+  {
+    return -1; // neither end (or a stretch over the whole path)
+  }
+  const int parent =
+    skeleton.junctions[static_cast<std::size_t>(head ? path.head.junction : path.tail.junction)]
+      .parentPath;
+  int m = -1;
+  for (const Junction& jn : skeleton.junctions)
+  {
+    const bool inside = head ? jn.parentPoint >= 1 && jn.parentPoint <= std::min(k, n - 2)
+                             : jn.parentPoint >= std::max(j - 1, 1) && jn.parentPoint <= n - 2;
+    if (jn.parentPath != static_cast<int>(pi) || !inside || jn.childPath == static_cast<int>(pi))
+    {
+      continue;
+    }
+    const SkeletonPath& bridge = skeleton.paths[static_cast<std::size_t>(jn.childPath)];
+    const int other =
+      jn.childEnd == Junction::End::Head ? bridge.tail.junction : bridge.head.junction;
+    if (other < 0 || skeleton.junctions[static_cast<std::size_t>(other)].parentPath != parent)
+    {
+      continue;
+    }
+    // The bridge nearest the stretch's far end: the whole chord goes.
+    m = m < 0 ? jn.parentPoint : (head ? std::max(m, jn.parentPoint) : std::min(m, jn.parentPoint));
+  }
+  // The path goes on past the bridge as a vessel: a run of 3 clean sections there (else the
+  // path is clutter of its own, which step 5 judges whole).
+  int run = 0, best = 0;
+  for (int q = m; m >= 0 && q >= 0 && q < n; q += head ? 1 : -1)
+  {
+    run = sec[static_cast<std::size_t>(q)].clean ? run + 1 : 0;
+    best = std::max(best, run);
+  }
+  return best >= s.minimumAnchorPoints ? m : -1;
+}
+
 /// The stretch [j, k), not re-traced. Clutter when its sections are wide (a plate's or a blob's,
 /// not a thin vessel's noisy wall) and either mostly not round (a plate's band) or wider than the
 /// tube it left (a blob), over more than the structure's diameter + 2 voxels: a junction's
@@ -103,11 +152,14 @@ void PathRetracer::planClutterCut(int j,
   const bool wider = std::isfinite(tube) &&
                      width > tube + std::max(s.radiusExcess_voxels, s.radiusExcessFraction * tube);
   // It does not reach a junction between two vessels, where the other vessel's lumen
-  // legitimately elongates the sections.
+  // legitimately elongates the sections - but for a loop's chord, its own joined end's.
+  const int chordTo = loopChordEnd(j, k);
+  const bool chordAtHead = chordTo >= 0 && j <= 1 && path.head.junction >= 0;
+  const int joinedEnd = chordAtHead ? 0 : n - 1;
   bool nearJunction = false;
   for (const int q : realJunctionPoints[pi])
   {
-    nearJunction = nearJunction || (q >= j - 1 && q <= k);
+    nearJunction = nearJunction || (q >= j - 1 && q <= k && !(chordTo >= 0 && q == joinedEnd));
   }
   if (nearJunction || k - j < s.clutterMinimumPoints || !(2 * notRound >= k - j || wider) ||
       !(width >= s.clutterMinimumWidth_voxels) || !(length > width + 2.0) ||
@@ -116,8 +168,8 @@ void PathRetracer::planClutterCut(int j,
     return;
   }
   RetracePlan cut;
-  cut.first = j;
-  cut.last = k - 1;
+  cut.first = chordTo >= 0 && !chordAtHead ? chordTo + 1 : j;
+  cut.last = chordAtHead ? chordTo - 1 : k - 1;
   cut.radiusFrom_mm = path.points[static_cast<std::size_t>(std::max(j - 1, 0))].radius_mm;
   cut.radiusTo_mm = path.points[static_cast<std::size_t>(std::min(k, n - 1))].radius_mm;
   cut.remove = true;
@@ -127,7 +179,8 @@ void PathRetracer::planClutterCut(int j,
   const Track& forwardTrack = tracks.forward;
   const Track& backwardTrack = tracks.backward;
   const double rBackward = tracks.rBackward_voxels;
-  if (j >= 1 && forwardTrack.centres.size() > 1 &&
+  // A loop's chord keeps no track: the bridge is the tube's way to the parent.
+  if (chordTo < 0 && j >= 1 && forwardTrack.centres.size() > 1 &&
       trackLength_mm(forwardTrack) > 2.0 * (tubeRadius(j - 1, k) + 1.0) * voxel)
   {
     cut.before = resampled(forwardTrack.centres.front(),
@@ -135,7 +188,7 @@ void PathRetracer::planClutterCut(int j,
       nullptr,
       voxel);
   }
-  if (k <= n - 1 && backwardTrack.centres.size() > 1 && std::isfinite(rBackward) &&
+  if (chordTo < 0 && k <= n - 1 && backwardTrack.centres.size() > 1 && std::isfinite(rBackward) &&
       trackLength_mm(backwardTrack) > 2.0 * (rBackward + 1.0) * voxel)
   {
     cut.after = resampled(backwardTrack.centres.front(),
