@@ -1,5 +1,7 @@
 #include "vtkVesselTouchCandidateRegionFilter.h"
 
+#include "vtouchShadingCorrection.h"
+
 #include "vtouchCandidateRegionRunner.h"
 #include "vtouchDistributedCenterline.h"
 
@@ -89,6 +91,19 @@ int vtkVesselTouchCandidateRegionFilter::RequestData(vtkInformation*,
   {
     return finish("The input has no one-component point scalars to find vessels in.");
   }
+  // The shading correction VesselCenterline applies (vtouch::ShadingField), so that the preview
+  // is the region the extraction codes.
+  vtkSmartPointer<vtkImageData> fromZero = vtouch::DistributedCenterline::pieceFromIndexZero(input);
+  vtouch::ShadingCorrection shading;
+  if (this->AutomaticIntensityRange && this->CorrectShading)
+  {
+    shading = vtouch::correctShading(fromZero, scalars, this->UseSeedPoint, this->SeedPoint);
+    if (shading.scalars)
+    {
+      scalars = shading.scalars;
+    }
+    vtouch::addShadingFieldData(output->GetFieldData(), shading);
+  }
   vtouch::CandidateRegionRequest request;
   request.automatic = this->AutomaticIntensityRange;
   request.lower = this->LowerThreshold;
@@ -105,8 +120,7 @@ int vtkVesselTouchCandidateRegionFilter::RequestData(vtkInformation*,
   {
     // From index 0 whatever the input's extent (Extract Subset, a VOI): the runner indexes the
     // voxels from the first one; the output keeps the input's extent, in the same voxel order.
-    region = vtouch::runCandidateRegion(
-      vtouch::DistributedCenterline::pieceFromIndexZero(input).Get(), scalars, request);
+    region = vtouch::runCandidateRegion(fromZero.Get(), scalars, request);
   }
   catch (const vtouch::Cancelled&)
   {
@@ -136,6 +150,7 @@ void vtkVesselTouchCandidateRegionFilter::PrintSelf(ostream& os, vtkIndent inden
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "AutomaticIntensityRange: " << this->AutomaticIntensityRange << "\n";
+  os << indent << "CorrectShading: " << this->CorrectShading << "\n";
   os << indent << "LowerThreshold: " << this->LowerThreshold << "\n";
   os << indent << "UpperThreshold: " << this->UpperThreshold << "\n";
   os << indent << "UseSeedPoint: " << this->UseSeedPoint << "\n";

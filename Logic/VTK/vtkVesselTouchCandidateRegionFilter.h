@@ -31,6 +31,13 @@ public:
   vtkSetMacro(AutomaticIntensityRange, bool);
   vtkGetMacro(AutomaticIntensityRange, bool);
   vtkBooleanMacro(AutomaticIntensityRange, bool);
+  /// With AutomaticIntensityRange on (default on): correct the volume's smooth multiplicative
+  /// shading before the range (vtouch::ShadingField; only where the fitted gain spans at least
+  /// 1.1, else the volume is used as it is). Field data ShadingCorrected (0/1), ShadingGainSpan
+  /// (lowest, highest gain relative to the seed) and ShadingMessage say what it did.
+  vtkSetMacro(CorrectShading, bool);
+  vtkGetMacro(CorrectShading, bool);
+  vtkBooleanMacro(CorrectShading, bool);
   vtkSetMacro(LowerThreshold, double);
   vtkGetMacro(LowerThreshold, double);
   vtkSetMacro(UpperThreshold, double);
@@ -74,6 +81,7 @@ private:
   double UpperThreshold = 1e300;
   double SeedPoint[3] = { 0.0, 0.0, 0.0 };
   bool UseSeedPoint = false;
+  bool CorrectShading = true;
   double IntensityRangeUsed[2] = { 0.0, 0.0 };
   std::string ExtractionMessage;
   bool LastRunCancelled = false;

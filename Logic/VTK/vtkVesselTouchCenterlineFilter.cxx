@@ -4,6 +4,7 @@
 #include "vtouchDistributedCenterline.h"
 #include "vtouchDistributedRequest.h"
 #include "vtouchDistributedRawRegion.h"
+#include "vtouchDistributedShading.h"
 #include "vtouchDistributedGlobalField.h"
 #include "vtouchDistributedWholePathRefinement.h"
 #include "vtouchControllerCollectives.h"
@@ -14,6 +15,7 @@
 #include "vtouchRangeForeground.h"
 #include "vtouchRawSkeletonRefinement.h"
 #include "vtouchSeedComponentSplit.h"
+#include "vtouchShadingCorrection.h"
 #include "vtouchBranchEntry.h"
 #include "vtouchSkeletonPathSmoothing.h"
 #include "vtouchSteadyClock.h"
@@ -351,6 +353,11 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   {
     scalars = input->GetPointData()->GetScalars(); // no array selected: the active scalars
   }
+  if (scalars && this->DistributedShadedScalars &&
+      this->DistributedShadedScalars->GetNumberOfTuples() == scalars->GetNumberOfTuples())
+  {
+    scalars = this->DistributedShadedScalars; // the ranks' shading correction of this piece
+  }
   if (!scalars)
   {
     fail("The input has no point scalars to threshold.");
@@ -391,6 +398,18 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   std::shared_ptr<const vtouch::SparseVesselMask> mask;
   std::vector<std::pair<std::string, double>> candidateSeconds;
   bool codeFromSeed = true;
+  // The volume's smooth shading, corrected before the range (issue 16; vtouch::ShadingField):
+  // every stage after it (range, region, sections, tips) reads the corrected scalars. A
+  // distributed run corrected its piece with the ranks' common field before (RequestDistributed).
+  vtouch::ShadingCorrection shading;
+  if (this->AutomaticIntensityRange && this->CorrectShading && !this->DistributedRegion)
+  {
+    shading = vtouch::correctShading(input, scalars, this->UseSeedPoint, this->SeedPoint);
+    if (shading.scalars)
+    {
+      scalars = shading.scalars;
+    }
+  }
   if (this->AutomaticIntensityRange)
   {
     vtouch::CandidateRegionRequest request;
@@ -554,6 +573,10 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
     this->DownsampleFactorUsed = factorUsed;
     vtouch::addRangeFieldData(
       output->GetFieldData(), lower, upper, this->AutomaticIntensityRange, std::string());
+    if (this->AutomaticIntensityRange)
+    {
+      vtouch::addShadingFieldData(output->GetFieldData(), shading);
+    }
     vtouch::addStageSeconds(output->GetFieldData(), candidateSeconds);
     vtouch::addStageSeconds(output->GetFieldData(), coderSeconds, "Coder");
     this->UpdateProgress(1.0);
@@ -728,6 +751,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   // across the ranks) and the region every kept voxel in it (h19x).
   vtouch::CandidateRegionOutcome region, rest;
   vtouch::DistributedRawRegion::Report regionReport;
+  vtouch::ShadingCorrection shading;
   const bool raw = this->AutomaticIntensityRange;
   if (raw)
   {
@@ -738,6 +762,15 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       std::copy(this->SeedPoint, this->SeedPoint + 3, request.seed_World_mm);
       vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
+      if (this->CorrectShading)
+      {
+        // The single run's shading correction, its field fitted to the ranks' common sample
+        // (collective); every later stage of this rank reads the corrected piece.
+        shading = vtouch::DistributedShading::run(
+          controller(), input, scalars, whole, this->UseSeedPoint, this->SeedPoint);
+        this->DistributedShadedScalars = shading.scalars;
+        scalars = shading.scalars ? shading.scalars.Get() : scalars;
+      }
       region = vtouch::DistributedRawRegion::run(
         controller(), input, scalars, whole, request, regionReport, cancelRequested);
       this->DistributedRegion = &region;
@@ -836,6 +869,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
     ~DeferReset()
     {
       this->filter->DeferPathSmoothing = this->filter->DeferRawRefinement = false;
+      this->filter->DistributedShadedScalars = nullptr;
       this->filter->DeferBranchEntries = false;
     }
   } deferReset{ this };
@@ -865,6 +899,7 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
       settings.backgroundNoise = region.backgroundNoise;
       vtkDataArray* scalars = input ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
       scalars = scalars || !input ? scalars : input->GetPointData()->GetScalars();
+      scalars = this->DistributedShadedScalars ? this->DistributedShadedScalars.Get() : scalars;
       // A two-valued volume without a seed is a mask the single run does not refine.
       return vtouch::DistributedWholePathRefinement::run(controller(),
         input,
@@ -907,6 +942,10 @@ int vtkVesselTouchCenterlineFilter::RequestDistributed(vtkInformationVector** in
   if (!outcome.firstRank)
   {
     return 1; // not the first rank: an empty piece of the output
+  }
+  if (raw && this->CorrectShading && outcome.message.empty())
+  {
+    vtouch::addShadingFieldData(output->GetFieldData(), shading); // the single run's arrays
   }
   for (const std::string& warning : outcome.warnings)
   {
@@ -978,15 +1017,15 @@ std::string vtkVesselTouchCenterlineFilter::RunKey(vtkImageData* input, vtkDataA
   {
     key << " " << (m ? m->GetData()[e] : (e % 4 == 0 ? 1.0 : 0.0));
   }
-  key << " automatic " << this->AutomaticIntensityRange << " range " << this->LowerThreshold << " "
-      << this->UpperThreshold << " seed " << this->UseSeedPoint << " " << this->SeedPoint[0] << " "
-      << this->SeedPoint[1] << " " << this->SeedPoint[2] << " component "
-      << this->MinimumComponentSize << " branch " << this->MinimumBranchLength << " smoothing "
-      << this->SmoothingWindow << " downsample " << this->DownsampleFactor << " vesselness "
-      << this->UseVesselness << " " << this->VesselnessSigmaMinimum << " "
-      << this->VesselnessSigmaMaximum << " " << this->VesselnessNumberOfScales << " "
-      << this->VesselnessThreshold << " largest radius " << this->LargestVesselRadius
-      << " distributed " << this->DistributedExtraction;
+  key << " automatic " << this->AutomaticIntensityRange << " shading " << this->CorrectShading
+      << " range " << this->LowerThreshold << " " << this->UpperThreshold << " seed "
+      << this->UseSeedPoint << " " << this->SeedPoint[0] << " " << this->SeedPoint[1] << " "
+      << this->SeedPoint[2] << " component " << this->MinimumComponentSize << " branch "
+      << this->MinimumBranchLength << " smoothing " << this->SmoothingWindow << " downsample "
+      << this->DownsampleFactor << " vesselness " << this->UseVesselness << " "
+      << this->VesselnessSigmaMinimum << " " << this->VesselnessSigmaMaximum << " "
+      << this->VesselnessNumberOfScales << " " << this->VesselnessThreshold << " largest radius "
+      << this->LargestVesselRadius << " distributed " << this->DistributedExtraction;
   return key.str();
 }
 
@@ -1041,6 +1080,7 @@ void vtkVesselTouchCenterlineFilter::CopyParameters(vtkVesselTouchCenterlineFilt
     return;
   }
   this->AutomaticIntensityRange = other->AutomaticIntensityRange;
+  this->CorrectShading = other->CorrectShading;
   this->LowerThreshold = other->LowerThreshold;
   this->UpperThreshold = other->UpperThreshold;
   std::copy(other->SeedPoint, other->SeedPoint + 3, this->SeedPoint);
@@ -1067,6 +1107,7 @@ void vtkVesselTouchCenterlineFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "AutomaticIntensityRange: " << this->AutomaticIntensityRange << "\n";
+  os << indent << "CorrectShading: " << this->CorrectShading << "\n";
   os << indent << "LowerThreshold: " << this->LowerThreshold << "\n";
   os << indent << "UpperThreshold: " << this->UpperThreshold << "\n";
   os << indent << "UseSeedPoint: " << this->UseSeedPoint << "\n";

@@ -60,6 +60,13 @@ public:
   vtkSetMacro(AutomaticIntensityRange, bool);
   vtkGetMacro(AutomaticIntensityRange, bool);
   vtkBooleanMacro(AutomaticIntensityRange, bool);
+  /// With AutomaticIntensityRange on (default on): correct the volume's smooth multiplicative
+  /// shading before the range (vtouch::ShadingField; only where the fitted gain spans at least
+  /// 1.1, else the volume is used as it is). Field data ShadingCorrected (0/1), ShadingGainSpan
+  /// (lowest, highest gain relative to the seed) and ShadingMessage say what it did.
+  vtkSetMacro(CorrectShading, bool);
+  vtkGetMacro(CorrectShading, bool);
+  vtkBooleanMacro(CorrectShading, bool);
   /// The range the last run used (also field data "IntensityRangeUsed"), and why the last run
   /// gave an empty output (also field data "ExtractionMessage"; empty on success).
   vtkGetVector2Macro(IntensityRangeUsed, double);
@@ -268,6 +275,7 @@ private:
   double UpperThreshold = 1e300;
   double SeedPoint[3] = { 0.0, 0.0, 0.0 };
   bool UseSeedPoint = false;
+  bool CorrectShading = true;
   int MinimumComponentSize = 100;
   double MinimumBranchLength = 2.5;
   double SmoothingWindow = 0.0;
@@ -300,6 +308,10 @@ private:
   /// Set by RequestDistributed in the raw seeded mode while ExtractVolume runs on the piece: the
   /// candidate region the ranks computed together, used instead of the piece's own.
   const vtouch::CandidateRegionOutcome* DistributedRegion = nullptr;
+  /// Set by RequestDistributed in the raw modes while the run uses the piece: the piece's
+  /// scalars corrected by the ranks' common shading field (vtouch::DistributedShading), read
+  /// instead of the input's array; null when there is no shading to correct.
+  vtkSmartPointer<vtkDataArray> DistributedShadedScalars;
   /// Set by RequestDistributed (the seeded modes, and the unseeded thresholded or binary mask)
   /// while ExtractVolume runs on the piece: the global SS field across the ranks, which the
   /// coder codes with (its hook).

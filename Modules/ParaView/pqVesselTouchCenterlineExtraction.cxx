@@ -1,5 +1,7 @@
 #include "pqVesselTouchCenterlineExtraction.h"
 
+#include "pqVesselTouchShadingNote.h"
+
 #include "pqVesselTouchCenterlineOverlay.h"
 #include "pqVesselTouchRemoteCancel.h"
 #include "pqVesselTouchRemoteUpdateEvents.h"
@@ -478,6 +480,7 @@ const pqVesselTouchExtractionResult& pqVesselTouchCenterlineExtraction::readResu
     {
       this->Result.message = QString::fromStdString(message->GetValue(0));
     }
+    this->Result.shading = pqVesselTouchShadingNote(fields);
   }
   return this->Result;
 }

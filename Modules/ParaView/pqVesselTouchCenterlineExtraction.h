@@ -48,6 +48,8 @@ struct pqVesselTouchExtractionResult
   bool rangeAutomatic = false;
   /// The filter's own words about the run (field data ExtractionMessage), "" when none.
   QString message;
+  /// What the shading correction did (pqVesselTouchShadingNote), "" when it corrected nothing.
+  QString shading;
   /// The run went on a thread of its own and the pipeline took its output without recomputing.
   bool background = false;
   /// Wall time from Extract to the result, s.

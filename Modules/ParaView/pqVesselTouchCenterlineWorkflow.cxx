@@ -573,6 +573,10 @@ void pqVesselTouchCenterlineWorkflow::onExtracted(pqPipelineSource* centerline, 
               .arg(result.rangeUsed[1])
               .arg(result.rangeAutomatic ? tr("automatic") : tr("yours"));
   }
+  if (!result.shading.isEmpty())
+  {
+    text += QLatin1Char(' ') + result.shading;
+  }
   if (!result.message.isEmpty())
   {
     text += QLatin1Char(' ') + result.message;
@@ -648,13 +652,17 @@ void pqVesselTouchCenterlineWorkflow::onPreviewShown()
   {
     this->showRangeUsed(result.rangeUsed); // the estimate, before any extraction
   }
-  this->setExtractMessage(tr("Preview (magenta): the region Extract would code, %1 voxels; "
-                             "vessel intensity %2 to %3 (%4).")
-                            .arg(result.voxels)
-                            .arg(result.rangeUsed[0])
-                            .arg(result.rangeUsed[1])
-                            .arg(result.rangeAutomatic ? tr("automatic") : tr("yours")),
-    false);
+  QString text = tr("Preview (magenta): the region Extract would code, %1 voxels; "
+                    "vessel intensity %2 to %3 (%4).")
+                   .arg(result.voxels)
+                   .arg(result.rangeUsed[0])
+                   .arg(result.rangeUsed[1])
+                   .arg(result.rangeAutomatic ? tr("automatic") : tr("yours"));
+  if (!result.shading.isEmpty())
+  {
+    text += QLatin1Char(' ') + result.shading;
+  }
+  this->setExtractMessage(text, false);
 }
 
 void pqVesselTouchCenterlineWorkflow::hidePreview()

@@ -1,5 +1,7 @@
 #include "pqVesselTouchRegionPreview.h"
 
+#include "pqVesselTouchShadingNote.h"
+
 #include "pqVesselTouchCenterlineOverlay.h"
 #include "pqVesselTouchVolumeJob.h"
 
@@ -130,6 +132,7 @@ void pqVesselTouchRegionPreview::onJobFinished(pqVesselTouchVolumeJob* job)
   result.rangeAutomatic = region->GetAutomaticIntensityRange();
   result.message = QString::fromUtf8(region->GetExtractionMessage());
   auto* mask = vtkImageData::SafeDownCast(region->GetOutputDataObject(0));
+  result.shading = pqVesselTouchShadingNote(mask ? mask->GetFieldData() : nullptr);
   auto* vessel =
     mask ? vtkUnsignedCharArray::SafeDownCast(mask->GetPointData()->GetScalars()) : nullptr;
   for (vtkIdType i = 0, n = vessel ? vessel->GetNumberOfValues() : 0; i < n; ++i)

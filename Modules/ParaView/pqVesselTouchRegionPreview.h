@@ -24,6 +24,8 @@ struct pqVesselTouchPreviewResult
   double rangeUsed[2] = { 0.0, 0.0 };
   bool rangeAutomatic = false;
   QString message;
+  /// What the shading correction did (pqVesselTouchShadingNote), "" when it corrected nothing.
+  QString shading;
 };
 
 class pqVesselTouchRegionPreview : public QObject

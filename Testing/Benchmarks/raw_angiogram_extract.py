@@ -104,7 +104,7 @@ def run_case(case, out_dir, keep_volume):
         array = fd.GetArray(i)
         name = fd.GetArrayName(i) or ""
         if array is not None and array.GetNumberOfTuples() >= 1 and (
-                name.endswith("Seconds") or "Range" in name):
+                name.endswith("Seconds") or "Range" in name or name.startswith("Shading")):
             values = vtk_to_numpy(array).ravel().astype(float).tolist()
             record["field." + name] = values
     record["paths"] = len(lines)

@@ -145,8 +145,9 @@ if os.path.exists(CTA):
     print("raw CTA: range [%g, %g], %d paths; reference within 1 mm %.3f, 2 mm %.3f, mean %.2f mm"
           % (lower, fd.GetArray("IntensityRangeUsed").GetValue(1), poly.GetNumberOfLines(),
              within1, within2, dist.mean()))
-    # Issue 16 asks >= 0.95 within 1 mm: 0.954 by this measure (nearest output point), 0.985
-    # along the polylines (RawAortaCtaFromASeedAloneCoversTheVmtkReference); 0.878 and 0.917
+    # Issue 16 asks >= 0.95 within 1 mm: 0.978 by this measure (nearest output point; 0.954
+    # before the shading correction), 0.985 along the polylines of the core's run without it
+    # (RawAortaCtaFromASeedAloneCoversTheVmtkReference); 0.878 and 0.917
     # before each branch's entry was carried on its own axis to its parent's (the left iliac's
     # path crossed the flattened lumen above the carina sideways, VMTK's line runs on along the
     # iliac's axis: Docs/CENTERLINES.md, "Raw angiograms", step 7).
@@ -173,6 +174,31 @@ if os.path.exists(CTA):
                 and near[(path_id == p) & (index > q)].sum() >= 10:
             on_reference += 1
     check.equal(on_reference, 1, "one bifurcation on the reference's part (the iliac one)")
+    # The volume darkens toward its top (the aorta's brightest voxel per coronal row j 2300 at
+    # the iliacs, 440 at j 390; the background with it): the shading correction (session 21)
+    # carries the seed's range up the abdominal aorta, which stopped at j 285 before. The network
+    # reaches the top tenth of the volume there, and every point in its top fifth lies on a voxel
+    # at least twice its row's median: on the vessel, not on the noise.
+    check.equal(fd.GetArray("ShadingCorrected").GetValue(0), 1, "the CTA's shading was corrected")
+    span = fd.GetArray("ShadingGainSpan")
+    check.true(span.GetValue(0) < 0.5 <= 1.0 <= span.GetValue(1),
+               "the gain spans the volume's darkening (%.2f-%.2f of the seed's)"
+               % (span.GetValue(0), span.GetValue(1)))
+    volume_image = servermanager.Fetch(cta)
+    ni, nj, nk = volume_image.GetDimensions()
+    voxels = vtk_to_numpy(volume_image.GetPointData().GetScalars()).reshape(nk, nj, ni)
+    row_median = numpy.median(voxels, axis=(0, 2))
+    ids = numpy.array([volume_image.FindPoint(p) for p in points])
+    j_of = (ids // ni) % nj
+    check.true(j_of.max() >= 0.9 * (nj - 1),
+               "the network runs up the aorta to the top tenth of the volume (row %d of %d)"
+               % (j_of.max(), nj - 1))
+    top = j_of >= 0.8 * (nj - 1)
+    values = vtk_to_numpy(volume_image.GetPointData().GetScalars())[ids[top]]
+    ratio = (values / row_median[j_of[top]]).min() if top.any() else 0.0
+    check.true(top.sum() >= 20 and ratio >= 2.0,
+               "%d points in the top fifth, each on a voxel >= 2 x its row's median (lowest %.1f)"
+               % (top.sum(), ratio))
 
     # The candidate region previews what was coded, with the same range.
     region = VesselCandidateRegion(Input=cta, UseSeedPoint=1,  # noqa: F821

@@ -28,7 +28,9 @@ seed on its root vessel (port 1's first point):
   run and every built-in point within UNSEEDED_FROM_VOXELS of the distributed run, the whole-path
   refinement, no message.
 - the shared real CTA (../shared/data/vmtk-aorta/aorta.mha, when present) seeded at CTA_SEED
-  on the same server (the executive's N slabs): the built-in run's paths, points, ends and
+  on the same server (the executive's N slabs): its shading corrected with the built-in run's
+  field (ShadingCorrected, ShadingGainSpan exactly: the ranks' gathered sample, session 21), the
+  built-in run's paths, points, ends and
   bifurcations, every point within 0.1 voxel either way (h17c: on 4 ranks the stitch lost one
   centre both ranks coded, 726 points for 727, 1.26 voxel).
 Exits non-zero on any failure.
@@ -157,7 +159,9 @@ def cta_reference():
                                   UseSeedPoint=1, SeedPoint=CTA_SEED)
     centerline.UpdatePipeline()
     data = sm.Fetch(centerline)
-    reference = (data.GetNumberOfCells(), graph(data, CTA_VOXEL_MM))
+    reference = (data.GetNumberOfCells(), graph(data, CTA_VOXEL_MM), field(data, "ShadingGainSpan"))
+    check(field(data, "ShadingCorrected") == [(1.0,)],
+          "the built-in CTA's shading was corrected (%s)" % field(data, "ShadingCorrected"))
     for proxy in (centerline, volume):
         simple.Delete(proxy)
     print("built in, the CTA seeded at %s: %d paths, %d points, %s"
@@ -175,7 +179,7 @@ def distributed_cta(reference):
     data = sm.Fetch(centerline, 0)
     got = graph(data, CTA_VOXEL_MM)
     pieces = field(data, "DistributedPieces")
-    paths, ref = reference
+    paths, ref, span = reference
     to_ref = farthest_point_voxels(got["points"], ref["points"], CTA_VOXEL_MM)
     from_ref = farthest_point_voxels(ref["points"], got["points"], CTA_VOXEL_MM)
     print("the CTA on %d ranks: %d paths, %d points, %s; farthest point from the built-in run "
@@ -184,6 +188,10 @@ def distributed_cta(reference):
     check(pieces is not None and int(pieces[0][0]) == RANKS,
           "the CTA: the extraction ran on every rank (%s)" % pieces)
     check(not message_of(data), "the CTA: no message (%r)" % message_of(data))
+    # The ranks' common shading field (vtouch::DistributedShading): the built-in one exactly.
+    check(field(data, "ShadingCorrected") == [(1.0,)] and field(data, "ShadingGainSpan") == span,
+          "the CTA: the built-in shading correction (%s, span %s for %s)"
+          % (field(data, "ShadingCorrected"), field(data, "ShadingGainSpan"), span))
     check(data.GetNumberOfCells() == paths and len(got["points"]) == len(ref["points"]),
           "the CTA: the built-in paths and points (%d / %d for %d / %d)"
           % (data.GetNumberOfCells(), len(got["points"]), paths, len(ref["points"])))

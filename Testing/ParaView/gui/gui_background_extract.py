@@ -16,7 +16,8 @@ verb: the picker's report of a pick there). Checks:
 - Preview: the candidate region in magenta over the MIP (the view's pixels), the estimated range
   in the fields, nothing new in the Pipeline Browser; clicking again hides it, Extract hides it;
 - deleting the volume mid-extraction and Edit > Reset Session mid-extraction: no crash, the run
-  is dropped, the panel still works.
+  is dropped, the panel still works;
+- a shaded volume (bias field +/- 60 %): Preview and Extract say that the shading was corrected.
 """
 
 import json
@@ -261,6 +262,35 @@ def body(gui, check):
         check(gui.alive(), "ParaView survives Edit > Reset Session mid-extraction")
         gui.run("state")
         check(gui.widget("volumeCombo").get("items") == [], "the chooser is empty after it")
+
+    step(9)
+    # 9. A shaded volume (the phantom's bias field at +/- 60 %: an MR coil's falling
+    # sensitivity): Preview and Extract say that the shading was corrected and in which units
+    # the range is (session 21, vtouch::ShadingField).
+    gui.python("from paraview import simple\n"
+               "import vesseltouch\n"
+               "v = simple.VesselPhantom(registrationName='Shaded', Shape='Raw angiogram',\n"
+               "                         Dimensions=[128, 128, 128], Seed=1,\n"
+               "                         NoiseStandardDeviation=20, BiasAmplitude=0.6)\n"
+               "vesseltouch.ShowAsMIP(v)\n"
+               "simple.SetActiveSource(v)\n"
+               "simple.Render()\n")
+    check(gui.wait_until(lambda s: s["widgets"]["volumeCombo"].get("text") == "Shaded"),
+          "the shaded volume is chosen")
+    gui.run("check", "automaticRange", 1)
+    if seed_at_root(gui, check, "Shaded"):
+        gui.run("click", "previewButton")
+        check(gui.wait_until(lambda s: not running(gui), seconds=120, period=0.2),
+              "Preview of the shaded volume ends")
+        text = gui.widget("extractMessage").get("text", "")
+        check("Preview" in text and "Shading corrected" in text and "seed's intensities" in text,
+              "Preview says the shading was corrected (%r)" % text)
+        gui.run("click", "previewButton")
+        check(gui.click_and_wait("extractButton"), "Extract of the shaded volume ends")
+        text = gui.widget("extractMessage").get("text", "")
+        check("centerline path" in text and "Shading corrected" in text,
+              "Extract says the shading was corrected (%r)" % text)
+        gui.capture("shaded_extracted.png")
     check(gui.alive(), "ParaView is running at the end")
 
 
