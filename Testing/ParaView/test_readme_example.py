@@ -74,6 +74,20 @@ default = vesseltouch.ExtractCenterlines(volume)
 estimated = vesseltouch.centerlines.IntensityRangeUsed(default)
 check.true(default.AutomaticIntensityRange == 1 and 400.0 < estimated[0] < 700.0,
            "default: the range is estimated (lower %g, half maximum)" % estimated[0])
+shading = vesseltouch.centerlines.ShadingCorrection(default)
+check.true(shading is not None and not shading["corrected"] and shading["message"],
+           "an unshaded volume is left as it is (%r)" % shading)
+shaded = VesselPhantom(Shape="Raw angiogram", Dimensions=[96, 96, 96], Seed=1,  # noqa: F821
+                       BiasAmplitude=0.6)
+shaded_lines = vesseltouch.ExtractCenterlines(
+    shaded, seed=servermanager.Fetch(shaded, idx=1).GetPoint(0))
+shading = vesseltouch.centerlines.ShadingCorrection(shaded_lines)
+check.true(shading["corrected"] and shading["gain_span"][0] < 1.0 <= shading["gain_span"][1]
+           and shaded_lines.GetDataInformation().GetNumberOfPoints() > 100,
+           "a shaded raw angiogram is corrected before its range (%r)" % shading)
+check.true(vesseltouch.centerlines.ShadingCorrection(whole) is None,
+           "no shading report when the range is given (%r)"
+           % vesseltouch.centerlines.ShadingCorrection(whole))
 try:
     vesseltouch.ExtractCenterlines(whole)
     check.true(False, "a polydata input raises")

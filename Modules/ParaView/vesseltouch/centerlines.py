@@ -4,7 +4,7 @@ from paraview import servermanager, simple
 
 from .connection import require_server_plugin
 
-__all__ = ["ExtractCenterlines", "IntensityRangeUsed", "ExtractionMessage"]
+__all__ = ["ExtractCenterlines", "IntensityRangeUsed", "ExtractionMessage", "ShadingCorrection"]
 
 
 def _scalar_range(port):
@@ -90,3 +90,22 @@ def ExtractionMessage(filter_proxy):
     filter_proxy.UpdatePipeline()
     array = _field_data(filter_proxy).GetAbstractArray("ExtractionMessage")
     return array.GetValue(0) if array is not None and array.GetNumberOfValues() else ""
+
+
+def ShadingCorrection(filter_proxy):
+    """What the last automatic run of a VesselCenterline or VesselCandidateRegion filter did of
+    the volume's smooth shading (its CorrectShading property, on by default): a dict with
+    ``corrected`` (bool), ``gain_span`` ((lowest, highest) gain of the volume relative to the
+    seed's, (1, 1) when not corrected) and ``message`` (for example "No shading correction: the
+    fitted gain spans 1.04 (P95 / P5), under 1.10."); None when the run wrote none (the range
+    given by hand)."""
+    filter_proxy.UpdatePipeline()
+    fields = _field_data(filter_proxy)
+    corrected = fields.GetArray("ShadingCorrected")
+    if corrected is None:
+        return None
+    span = fields.GetArray("ShadingGainSpan")
+    text = fields.GetAbstractArray("ShadingMessage")
+    return {"corrected": corrected.GetValue(0) != 0,
+            "gain_span": (span.GetValue(0), span.GetValue(1)) if span is not None else (1.0, 1.0),
+            "message": text.GetValue(0) if text is not None and text.GetNumberOfValues() else ""}
