@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 namespace vtouch
 {
@@ -126,6 +125,30 @@ double ShadingField::gain(double i, double j, double k) const
   return std::exp(l);
 }
 
+ShadingField::RowRecurrence ShadingField::rowRecurrence(std::int64_t j, std::int64_t k) const
+{
+  RowRecurrence r;
+  if (!this->Active)
+  {
+    return r;
+  }
+  // logGain along the row: K0 + K1 u0 + C4 u0^2 with u0 = a0 + s0 i, the terms of u1 and u2 fixed.
+  const double u1 = (static_cast<double>(j) - this->Centre[1]) / this->HalfExtent[1];
+  const double u2 = (static_cast<double>(k) - this->Centre[2]) / this->HalfExtent[2];
+  const auto& c = this->Coefficients;
+  const double k0 = c[0] + c[2] * u1 + c[3] * u2 + c[5] * u1 * u1 + c[6] * u2 * u2 +
+                    c[9] * u1 * u2 - this->Reference;
+  const double k1 = c[1] + c[7] * u1 + c[8] * u2;
+  const double s0 = 1.0 / this->HalfExtent[0], a0 = -this->Centre[0] * s0;
+  const double a = k0 + k1 * a0 + c[4] * a0 * a0;
+  const double b = (k1 + 2.0 * c[4] * a0) * s0;
+  const double q = c[4] * s0 * s0;
+  r.gain = std::exp(a);
+  r.ratio = std::exp(b + q);
+  r.ratioStep = std::exp(2.0 * q);
+  return r;
+}
+
 void ShadingField::setReference(const std::array<std::int64_t, 3>& c)
 {
   if (this->BlockCentres.empty())
@@ -156,6 +179,10 @@ std::string ShadingField::summary() const
       this->SpanHigh,
       this->BlocksUsed);
   }
+  else if (!this->Why.empty())
+  {
+    return "No shading correction: " + this->Why + ".";
+  }
   else
   {
     std::snprintf(text,
@@ -168,30 +195,62 @@ std::string ShadingField::summary() const
 }
 
 ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
-  double minimum,
   std::uint64_t stride,
   std::vector<Sample> samples,
   const Parameters& p)
 {
   ShadingField f;
-  // The model's zero: the image's own (an MR magnitude, a CT stored without offset, the
-  // phantom) unless the volume goes below it (a CT in Hounsfield units: its air).
-  minimum = std::min(0.0, minimum);
-  f.Minimum = minimum;
   f.Gate = p.minimumGainRatio;
+  f.Why = "too few blocks of the volume above its zero to fit a shading";
   for (std::size_t a = 0; a < 3; ++a)
   {
     f.Centre[a] = 0.5 * static_cast<double>(wholeDims[a] - 1);
     f.HalfExtent[a] = std::max(1.0, f.Centre[a]);
   }
+  const std::int64_t voxels = wholeDims[0] * wholeDims[1] * wholeDims[2];
+  // Values only (not a number is no evidence), inside the volume.
+  samples.erase(std::remove_if(samples.begin(),
+                  samples.end(),
+                  [voxels](const Sample& x)
+                  {
+                    return !std::isfinite(x.value) ||
+                           x.linear >=
+                             static_cast<std::uint64_t>(std::max<std::int64_t>(0, voxels));
+                  }),
+    samples.end());
   if (samples.empty() || wholeDims[0] <= 0 || wholeDims[1] <= 0 || wholeDims[2] <= 0)
   {
     return f;
   }
-  // The same sample in any order gives the same field.
-  std::sort(samples.begin(),
-    samples.end(),
-    [](const Sample& a, const Sample& b) { return a.linear < b.linear; });
+  // The model's zero: the image's own (an MR magnitude, a CT stored without offset, the
+  // phantom) unless the sample goes below it (a CT in Hounsfield units: its air). A sample of at
+  // most two values is a mask (or a single intensity): no shading.
+  const double first = samples.front().value;
+  double minimum = first, second = first;
+  bool haveSecond = false, third = false;
+  for (const Sample& x : samples)
+  {
+    minimum = std::min(minimum, x.value);
+    if (x.value != first && !haveSecond)
+    {
+      second = x.value;
+      haveSecond = true;
+    }
+    third = third || (x.value != first && x.value != second);
+  }
+  if (!third)
+  {
+    f.Why = "a binary mask or a single intensity";
+    return f;
+  }
+  minimum = std::min(0.0, minimum);
+  f.Minimum = minimum;
+  // The same sample in any order gives the same field (a single run's comes sorted).
+  const auto byIndex = [](const Sample& a, const Sample& b) { return a.linear < b.linear; };
+  if (!std::is_sorted(samples.begin(), samples.end(), byIndex))
+  {
+    std::sort(samples.begin(), samples.end(), byIndex);
+  }
   // Blocks: edge e, at least minimumSamplesPerBlock lattice samples in a whole block.
   const double perVoxel = 1.0 / static_cast<double>(std::max<std::uint64_t>(1, stride));
   std::int64_t e = p.minimumBlockEdge_voxels;
@@ -204,22 +263,20 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
   {
     nb[a] = (wholeDims[a] + e - 1) / e;
   }
-  std::map<std::int64_t, std::vector<double>> values;
-  for (const Sample& s : samples)
+  std::vector<std::vector<double>> values(static_cast<std::size_t>(nb[0] * nb[1] * nb[2]));
+  for (const Sample& x : samples)
   {
-    const auto l = static_cast<std::int64_t>(s.linear);
+    const auto l = static_cast<std::int64_t>(x.linear);
     const std::int64_t i = l % wholeDims[0], j = (l / wholeDims[0]) % wholeDims[1],
                        k = l / (wholeDims[0] * wholeDims[1]);
-    if (!std::isfinite(s.value))
-    {
-      continue;
-    }
-    values[(k / e * nb[1] + j / e) * nb[0] + i / e].push_back(s.value);
+    values[static_cast<std::size_t>((k / e * nb[1] + j / e) * nb[0] + i / e)].push_back(x.value);
   }
   std::vector<Block> blocks;
   std::vector<double> levels;
-  for (auto& [id, v] : values)
+  for (std::size_t n = 0; n < values.size(); ++n)
   {
+    const auto id = static_cast<std::int64_t>(n);
+    std::vector<double>& v = values[n];
     if (v.size() < p.minimumSamplesPerBlock)
     {
       continue; // a thin remainder at the volume's face
@@ -379,6 +436,7 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
   {
     return f;
   }
+  f.Why.clear();
   std::vector<double> sorted = fittedLog;
   const double p5 = quantile(sorted, 0.05), p95 = quantile(sorted, 0.95);
   f.GainRatio = std::exp(p95 - p5);

@@ -7,7 +7,7 @@
 //
 // Yi & Hayward §3.1 extract "from raw intensity volume images with linear operations" and give
 // no rule for shading; the rule here is the product's (a named departure, Docs/CENTERLINES.md):
-//  - model: I(x) = m + g(x) (I0(x) - m), g smooth and positive, m = min(0, the volume's minimum):
+//  - model: I(x) = m + g(x) (I0(x) - m), g smooth and positive, m = min(0, the sample's minimum):
 //    the image's zero (an MR magnitude's, a CT's stored without offset, where air is 0), or a CT
 //    in Hounsfield units' air, whose shading then spans too little to be corrected;
 //  - evidence: the background level of blocks of the volume (16 voxels a side, more when the
@@ -65,11 +65,11 @@ public:
     double value = 0.0;
   };
 
-  /// The field fitted to `samples` (any order; sorted here) of a volume of `wholeDims` whose
-  /// minimum is `minimum` (the model's zero is min(0, minimum)), drawn on the lattice of `stride`.
-  /// Inactive when the gate is not met or when too few blocks hold enough samples.
+  /// The field fitted to `samples` (any order; sorted here) of a volume of `wholeDims`, drawn on
+  /// the lattice of `stride`; the model's zero is min(0, the sample's minimum). Inactive (and
+  /// summary() says why) for a sample of at most two values (a mask), when too few blocks hold
+  /// enough samples above the zero, or when the gate is not met.
   static ShadingField fit(const std::array<std::int64_t, 3>& wholeDims,
-    double minimum,
     std::uint64_t stride,
     std::vector<Sample> samples,
     const Parameters& p = Parameters{});
@@ -102,11 +102,24 @@ public:
 
 private:
   static constexpr int kTerms = 10;
+  /// The gain along a row of the whole volume from i = 0: gain(i) = exp(a + b i + c i^2) (no
+  /// span clamp; 1 when inactive), advanced by step().
+  struct RowRecurrence
+  {
+    double gain = 1.0, ratio = 1.0, ratioStep = 1.0;
+    void step()
+    {
+      this->gain *= this->ratio;
+      this->ratio *= this->ratioStep;
+    }
+  };
+  RowRecurrence rowRecurrence(std::int64_t j, std::int64_t k) const;
   /// The polynomial's terms at normalised position u (each axis in [-1, 1] over the volume).
   void terms(const double u[3], double t[kTerms]) const;
   double logGain(double i, double j, double k) const;
 
   bool Active = false;
+  std::string Why;   ///< why the field is inactive before its gate ("" when fitted)
   double Gate = 0.0; ///< Parameters::minimumGainRatio of the fit
   double GainRatio = 1.0;
   int BlocksUsed = 0;
@@ -141,21 +154,32 @@ void ShadingField::correct(const VolumeView<T>& piece,
 {
   const double lowest = static_cast<double>(std::numeric_limits<T>::lowest());
   const double highest = static_cast<double>(std::numeric_limits<T>::max());
+  const std::int64_t first = pieceOrigin[0], last = pieceOrigin[0] + piece.dims[0] - 1;
   for (std::int64_t k = 0; k < piece.dims[2]; ++k)
     for (std::int64_t j = 0; j < piece.dims[1]; ++j)
-      for (std::int64_t i = 0; i < piece.dims[0]; ++i)
+    {
+      // Along a row the log gain is a quadratic of the whole volume's i: the gain by a product
+      // recurrence from i = 0 (two multiplications a voxel instead of an exp; every piece that
+      // holds the voxel runs the same recurrence from the same start, so a distributed rank
+      // gets the single run's value bit for bit).
+      RowRecurrence row = this->rowRecurrence(j + pieceOrigin[1], k + pieceOrigin[2]);
+      for (std::int64_t i = 0; i < first; ++i)
       {
-        const std::uint64_t n = piece.linear(i, j, k);
-        const double g = this->gain(static_cast<double>(i + pieceOrigin[0]),
-          static_cast<double>(j + pieceOrigin[1]),
-          static_cast<double>(k + pieceOrigin[2]));
-        double v = this->Minimum + (static_cast<double>(piece.voxels[n]) - this->Minimum) / g;
+        row.step();
+      }
+      const T* in = piece.voxels + piece.linear(0, j, k);
+      T* to = out + piece.linear(0, j, k);
+      for (std::int64_t i = first; i <= last; ++i, row.step())
+      {
+        const double g = std::min(this->SpanHigh, std::max(this->SpanLow, row.gain));
+        double v = this->Minimum + (static_cast<double>(in[i - first]) - this->Minimum) / g;
         if constexpr (std::is_integral_v<T>)
         {
           v = std::min(highest, std::max(lowest, std::round(v)));
         }
-        out[n] = static_cast<T>(v);
+        to[i - first] = static_cast<T>(v);
       }
+    }
 }
 
 } // namespace vtouch

@@ -402,13 +402,16 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
   // every stage after it (range, region, sections, tips) reads the corrected scalars. A
   // distributed run corrected its piece with the ranks' common field before (RequestDistributed).
   vtouch::ShadingCorrection shading;
+  double shadingSeconds = -1.0; // CandidateShadingSeconds (this run's fit and correction)
   if (this->AutomaticIntensityRange && this->CorrectShading && !this->DistributedRegion)
   {
+    const double start = vtouch::steadyNow_s();
     shading = vtouch::correctShading(input, scalars, this->UseSeedPoint, this->SeedPoint);
     if (shading.scalars)
     {
       scalars = shading.scalars;
     }
+    shadingSeconds = vtouch::steadyNow_s() - start;
   }
   if (this->AutomaticIntensityRange)
   {
@@ -439,6 +442,10 @@ int vtkVesselTouchCenterlineFilter::ExtractVolume(vtkInformationVector** inputVe
       return 1;
     }
     candidateSeconds = region.stageSeconds;
+    if (shadingSeconds >= 0.0)
+    {
+      candidateSeconds.insert(candidateSeconds.begin(), { "shading", shadingSeconds });
+    }
     this->IntensityRangeUsed[0] = lower = region.lower;
     this->IntensityRangeUsed[1] = upper = region.upper;
     background = region.background;

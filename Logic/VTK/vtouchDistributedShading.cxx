@@ -4,7 +4,6 @@
 #include "vtouchDistributedGlobalField.h"
 
 #include <algorithm>
-#include <set>
 
 namespace vtouch
 {
@@ -27,8 +26,7 @@ ShadingCorrection DistributedShading::run(vtkMultiProcessController* controller,
   const std::uint64_t voxels = static_cast<std::uint64_t>(
     std::max<std::int64_t>(0, wholeDims[0] * wholeDims[1] * wholeDims[2]));
   const std::uint64_t stride = IntensityRangeEstimator::sampleStride(voxels);
-  // This rank's scan and its voxels on the single run's lattice: (linear index, value) pairs.
-  std::vector<double> scan{ 0.0, 0.0, -1.0, 0.0, 0.0, 0.0 };
+  // This rank's voxels on the single run's lattice: (linear index, value) pairs.
   std::vector<double> lattice;
   std::array<std::int64_t, 3> origin{ 0, 0, 0 }, dims{ 0, 0, 0 };
   if (usable)
@@ -47,10 +45,6 @@ ShadingCorrection DistributedShading::run(vtkMultiProcessController* controller,
         VolumeView<T> view;
         view.voxels = voxels;
         view.dims = dims;
-        const IntensityRangeEstimator::Scan s = IntensityRangeEstimator::scan(view);
-        scan = {
-          s.minimum, s.maximum, s.twoValued ? 1.0 : 0.0, s.first, s.second, s.haveSecond ? 1.0 : 0.0
-        };
         for (std::int64_t k = 0; k < dims[2]; ++k)
           for (std::int64_t j = 0; j < dims[1]; ++j)
           {
@@ -67,37 +61,7 @@ ShadingCorrection DistributedShading::run(vtkMultiProcessController* controller,
         return 0;
       });
   }
-  // The whole volume's scan (a rank without a piece sends twoValued -1: nothing).
-  const std::vector<std::vector<double>> scans = c.allGather(scan);
-  bool any = false, two = true;
-  double minimum = 0.0, maximum = 0.0;
-  std::set<double> distinct;
-  for (const std::vector<double>& s : scans)
-  {
-    if (s.size() < 6 || s[2] < 0.0)
-    {
-      continue;
-    }
-    minimum = any ? std::min(minimum, s[0]) : s[0];
-    maximum = any ? std::max(maximum, s[1]) : s[1];
-    any = true;
-    if (s[2] == 0.0)
-    {
-      two = false;
-    }
-    distinct.insert(s[3]);
-    if (s[5] != 0.0)
-    {
-      distinct.insert(s[4]);
-    }
-  }
-  two = two && distinct.size() <= 2;
   const std::vector<std::vector<double>> pieces = c.allGather(lattice);
-  if (!any || minimum == maximum || two)
-  {
-    out.summary = "No shading correction: a binary mask or a single intensity.";
-    return out;
-  }
   // The union of the ranks' lattice voxels, each once (ghost layers are held twice).
   std::vector<ShadingField::Sample> samples;
   for (const std::vector<double>& p : pieces)
@@ -116,7 +80,7 @@ ShadingCorrection DistributedShading::run(vtkMultiProcessController* controller,
                   [](const ShadingField::Sample& a, const ShadingField::Sample& b)
                   { return a.linear == b.linear; }),
     samples.end());
-  out.field = ShadingField::fit(wholeDims, minimum, stride, std::move(samples));
+  out.field = ShadingField::fit(wholeDims, stride, std::move(samples));
   if (useSeed && input)
   {
     const std::array<std::int64_t, 3> seed =

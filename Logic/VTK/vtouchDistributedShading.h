@@ -2,8 +2,6 @@
 // the single run's vtouch::ShadingField on every rank, so that each rank corrects its held piece
 // as the single run corrects the whole volume. Not a wrapped class: the filter's private helper
 // (vtkVesselTouchCenterlineFilter::RequestDistributed's raw hook).
-//  - the volume's extremes and whether it holds two values: each rank scans its held piece, the
-//    scans are gathered (the single run's IntensityRangeEstimator::scan of the whole volume);
 //  - the sample: each rank sends the voxels of the single run's lattice (every
 //    IntensityRangeEstimator::sampleStride-th voxel of the whole volume, in its linear order) that
 //    its held piece holds; the ranks' pieces cover the volume, so the union (a voxel two pieces

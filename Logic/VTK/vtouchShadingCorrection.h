@@ -87,25 +87,16 @@ inline ShadingCorrection correctShading(vtkImageData* image,
       VolumeView<T> view;
       view.voxels = voxels;
       view.dims = dims;
-      const IntensityRangeEstimator::Scan scan = IntensityRangeEstimator::scan(view);
-      if (!IntensityRangeEstimator::needsSample(scan))
-      {
-        out.summary = "No shading correction: a binary mask or a single intensity.";
-        return 0;
-      }
+      // fromVolume's sample lattice: no pass over the whole volume unless there is shading.
       const std::uint64_t stride = IntensityRangeEstimator::sampleStride(view.size());
-      out.field =
-        ShadingField::fit(dims, scan.minimum, stride, ShadingField::sampleOf(view, stride));
+      out.field = ShadingField::fit(dims, stride, ShadingField::sampleOf(view, stride));
       if (useSeed && view.inside(seed[0], seed[1], seed[2]))
       {
         out.field.setReference(seed);
       }
       return 0;
     });
-  if (out.summary.empty())
-  {
-    out.summary = out.field.summary();
-  }
+  out.summary = out.field.summary();
   if (out.field.active())
   {
     out.scalars = correctedScalars(out.field, scalars, dims, { 0, 0, 0 });

@@ -52,8 +52,7 @@ VolumeView<float> viewOf(const std::vector<float>& v)
 ShadingField fitted(const std::vector<float>& v)
 {
   const VolumeView<float> view = viewOf(v);
-  const float lowest = *std::min_element(v.begin(), v.end());
-  return ShadingField::fit(view.dims, lowest, 1, ShadingField::sampleOf(view, 1));
+  return ShadingField::fit(view.dims, 1, ShadingField::sampleOf(view, 1));
 }
 
 double median(std::vector<double> x)
@@ -158,9 +157,9 @@ TEST(ShadingField, TheSameSampleInAnyOrderGivesTheSameField)
   const std::vector<float> v = shadedVolume(gain);
   const VolumeView<float> view = viewOf(v);
   std::vector<ShadingField::Sample> sample = ShadingField::sampleOf(view, 3);
-  const ShadingField a = ShadingField::fit(view.dims, 0.0, 3, sample);
+  const ShadingField a = ShadingField::fit(view.dims, 3, sample);
   std::shuffle(sample.begin(), sample.end(), std::mt19937(11));
-  const ShadingField b = ShadingField::fit(view.dims, 0.0, 3, sample);
+  const ShadingField b = ShadingField::fit(view.dims, 3, sample);
   ASSERT_TRUE(a.active());
   EXPECT_EQ(a.gainRatio(), b.gainRatio());
   for (double p : { 0.0, 17.5, 50.0, 95.0 })
@@ -172,7 +171,7 @@ TEST(ShadingField, TheSameSampleInAnyOrderGivesTheSameField)
 TEST(ShadingField, UnusableSamplesGiveNoFieldAndNoChange)
 {
   const std::array<std::int64_t, 3> dims{ kNx, kNy, kNz };
-  EXPECT_FALSE(ShadingField::fit(dims, 0.0, 1, {}).active());
+  EXPECT_FALSE(ShadingField::fit(dims, 1, {}).active());
   // Every value at the minimum (padding), or not a number.
   std::vector<ShadingField::Sample> flat, nan;
   for (std::uint64_t n = 0; n < static_cast<std::uint64_t>(kNx * kNy * kNz); n += 7)
@@ -180,13 +179,22 @@ TEST(ShadingField, UnusableSamplesGiveNoFieldAndNoChange)
     flat.push_back({ n, 0.0 });
     nan.push_back({ n, std::numeric_limits<double>::quiet_NaN() });
   }
-  EXPECT_FALSE(ShadingField::fit(dims, 0.0, 7, flat).active());
-  EXPECT_FALSE(ShadingField::fit(dims, 0.0, 7, nan).active());
+  EXPECT_FALSE(ShadingField::fit(dims, 7, flat).active());
+  EXPECT_NE(ShadingField::fit(dims, 7, flat).summary().find("binary mask or a single"),
+    std::string::npos);
+  EXPECT_FALSE(ShadingField::fit(dims, 7, nan).active());
+  // A two-valued mask (0 and 1000 in slabs along j: a "gain" of 1000 the fit would find).
+  std::vector<ShadingField::Sample> mask;
+  for (std::uint64_t n = 0; n < static_cast<std::uint64_t>(kNx * kNy * kNz); n += 7)
+  {
+    mask.push_back({ n, (n / static_cast<std::uint64_t>(kNx)) % kNy < kNy / 2 ? 0.0 : 1000.0 });
+  }
+  EXPECT_FALSE(ShadingField::fit(dims, 7, mask).active());
   // A volume smaller than a block, and an empty one.
-  EXPECT_FALSE(ShadingField::fit({ 4, 4, 4 }, 0.0, 1, { { 0, 5.0 }, { 1, 6.0 } }).active());
-  EXPECT_FALSE(ShadingField::fit({ 0, 0, 0 }, 0.0, 1, { { 0, 5.0 } }).active());
+  EXPECT_FALSE(ShadingField::fit({ 4, 4, 4 }, 1, { { 0, 5.0 }, { 1, 6.0 } }).active());
+  EXPECT_FALSE(ShadingField::fit({ 0, 0, 0 }, 1, { { 0, 5.0 } }).active());
   // An inactive field's correction copies the voxels.
-  const ShadingField none = ShadingField::fit(dims, 0.0, 1, {});
+  const ShadingField none = ShadingField::fit(dims, 1, {});
   const std::vector<float> in{ 1.0F, 2.5F, 300.0F, -4.0F };
   VolumeView<float> view;
   view.voxels = in.data();
@@ -215,7 +223,7 @@ TEST(ShadingField, AnIntegerVolumeIsRoundedAndClampedToItsType)
   VolumeView<std::uint8_t> view;
   view.voxels = v.data();
   view.dims = { kNx, kNy, kNz };
-  ShadingField f = ShadingField::fit(view.dims, 0.0, 1, ShadingField::sampleOf(view, 1));
+  ShadingField f = ShadingField::fit(view.dims, 1, ShadingField::sampleOf(view, 1));
   ASSERT_TRUE(f.active()) << f.summary();
   f.setReference({ 48, 0, 24 }); // the bright end: the dark end is raised up to 4 times
   std::vector<std::uint8_t> out(v.size());
