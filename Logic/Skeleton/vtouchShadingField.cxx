@@ -222,9 +222,8 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
   {
     return f;
   }
-  // The model's zero: the image's own (an MR magnitude, a CT stored without offset, the
-  // phantom) unless the sample goes below it (a CT in Hounsfield units: its air). A sample of at
-  // most two values is a mask (or a single intensity): no shading.
+  // The model's zero is the image's own (an MR magnitude's, a CT's stored with air at 0, the
+  // phantom's). A sample of at most two values is a mask (or a single intensity): no shading.
   const double first = samples.front().value;
   double minimum = first, second = first;
   bool haveSecond = false, third = false;
@@ -243,7 +242,15 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
     f.Why = "a binary mask or a single intensity";
     return f;
   }
-  minimum = std::min(0.0, minimum);
+  if (minimum < 0.0)
+  {
+    // A CT in Hounsfield units (air -1000, padding to -3024) or a subtraction image: its zero
+    // is not the darkest tissue's, and the gain of a multiplicative model is not its shading.
+    f.Why = "the volume has negative intensities (a CT in Hounsfield units, a subtraction), "
+            "so a multiplicative shading does not apply";
+    return f;
+  }
+  minimum = 0.0;
   f.Minimum = minimum;
   // The same sample in any order gives the same field (a single run's comes sorted).
   const auto byIndex = [](const Sample& a, const Sample& b) { return a.linear < b.linear; };

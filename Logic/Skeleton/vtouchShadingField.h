@@ -7,9 +7,11 @@
 //
 // Yi & Hayward §3.1 extract "from raw intensity volume images with linear operations" and give
 // no rule for shading; the rule here is the product's (a named departure, Docs/CENTERLINES.md):
-//  - model: I(x) = m + g(x) (I0(x) - m), g smooth and positive, m = min(0, the sample's minimum):
-//    the image's zero (an MR magnitude's, a CT's stored without offset, where air is 0), or a CT
-//    in Hounsfield units' air, whose shading then spans too little to be corrected;
+//  - model: I(x) = g(x) I0(x), g smooth and positive, for images whose zero is their own (an MR
+//    magnitude, a CTA stored with air at 0, the phantom). A volume with negative values (a CT in
+//    Hounsfield units, a subtraction image) is left as it is: its zero is not its darkest
+//    tissue's, and its shading (a CT's cupping) is not a gain. (The code keeps m = 0 as the
+//    model's zero, Minimum.)
 //  - evidence: the background level of blocks of the volume (16 voxels a side, more when the
 //    sample is sparse), each the median of the volume's sample lattice in the block
 //    (IntensityRangeEstimator::sampleStride, the lattice fromVolume draws): vessels fill well
@@ -23,7 +25,7 @@
 //    Parameters::minimumGainRatio (1.1) between the 5th and 95th percentiles of the blocks. The
 //    phantom family's bias (+/- 10 %) fits 1.03-1.04, and correcting it moved recall both ways
 //    by up to 0.5 %: the fit's own error. A scene with no more shading than that needs no model;
-//  - correction: I'(x) = m + (I(x) - m) / g(x), g = 1 at the seed (the range estimated there is
+//  - correction: I'(x) = I(x) / g(x), g = 1 at the seed (the range estimated there is
 //    the range of the corrected volume), or at the blocks' median without a seed; g is held
 //    within the span the blocks' centres support (no extrapolation of the quadratic to the
 //    volume's corners).
@@ -66,9 +68,9 @@ public:
   };
 
   /// The field fitted to `samples` (any order; sorted here) of a volume of `wholeDims`, drawn on
-  /// the lattice of `stride`; the model's zero is min(0, the sample's minimum). Inactive (and
-  /// summary() says why) for a sample of at most two values (a mask), when too few blocks hold
-  /// enough samples above the zero, or when the gate is not met.
+  /// the lattice of `stride`. Inactive (and summary() says why) for a sample of at most two values
+  /// (a mask), with a negative value (a CT in Hounsfield units), when too few blocks hold enough
+  /// samples above zero, or when the gate is not met.
   static ShadingField fit(const std::array<std::int64_t, 3>& wholeDims,
     std::uint64_t stride,
     std::vector<Sample> samples,

@@ -146,6 +146,22 @@ TEST(ShadingField, TakesNoTissueBoundaryForShading)
   EXPECT_FALSE(f.active()) << f.summary();
 }
 
+TEST(ShadingField, LeavesAVolumeWithNegativeValuesAsItIs)
+{
+  // A CT in Hounsfield units: the same fourfold shading of the tissue, the volume offset to
+  // -1024 (air) at its first slab. A multiplicative gain is not its shading: no field.
+  const auto gain = [](std::int64_t, std::int64_t j, std::int64_t)
+  { return 1.6 - 1.2 * static_cast<double>(j) / static_cast<double>(kNy - 1); };
+  std::vector<float> v = shadedVolume(gain);
+  for (std::size_t n = 0; n < static_cast<std::size_t>(kNx * kNy); ++n)
+  {
+    v[n] = -1024.0F;
+  }
+  const ShadingField f = fitted(v);
+  EXPECT_FALSE(f.active());
+  EXPECT_NE(f.summary().find("negative intensities"), std::string::npos) << f.summary();
+}
+
 TEST(ShadingField, TheSameSampleInAnyOrderGivesTheSameField)
 {
   // A distributed run gathers the ranks' samples rank by rank: fit() sorts them.
@@ -180,8 +196,8 @@ TEST(ShadingField, UnusableSamplesGiveNoFieldAndNoChange)
     nan.push_back({ n, std::numeric_limits<double>::quiet_NaN() });
   }
   EXPECT_FALSE(ShadingField::fit(dims, 7, flat).active());
-  EXPECT_NE(ShadingField::fit(dims, 7, flat).summary().find("binary mask or a single"),
-    std::string::npos);
+  EXPECT_NE(
+    ShadingField::fit(dims, 7, flat).summary().find("binary mask or a single"), std::string::npos);
   EXPECT_FALSE(ShadingField::fit(dims, 7, nan).active());
   // A two-valued mask (0 and 1000 in slabs along j: a "gain" of 1000 the fit would find).
   std::vector<ShadingField::Sample> mask;
