@@ -10,16 +10,6 @@ namespace vtouch
 namespace
 {
 
-/// Value at fraction q of the sorted sample (nearest rank); the sample is reordered.
-double quantile(std::vector<double>& v, double q)
-{
-  const auto n = static_cast<std::ptrdiff_t>(v.size());
-  const std::ptrdiff_t at =
-    std::min<std::ptrdiff_t>(n - 1, static_cast<std::ptrdiff_t>(q * static_cast<double>(n)));
-  std::nth_element(v.begin(), v.begin() + at, v.end());
-  return v[static_cast<std::size_t>(at)];
-}
-
 /// Solves the symmetric system a x = b (n x n, row-major) by Gaussian elimination with partial
 /// pivoting; false when singular.
 bool solve(std::vector<double> a, std::vector<double> b, int n, std::vector<double>& x)
@@ -67,14 +57,6 @@ bool solve(std::vector<double> a, std::vector<double> b, int n, std::vector<doub
   }
   return true;
 }
-
-struct Block
-{
-  std::array<double, 3> centre{};
-  double logLevel = 0.0; ///< log(B - m)
-  double weight = 0.0;   ///< its samples
-  bool kept = true;
-};
 
 } // namespace
 
@@ -194,19 +176,9 @@ std::string ShadingField::summary() const
   return text;
 }
 
-ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
-  std::uint64_t stride,
-  std::vector<Sample> samples,
-  const Parameters& p)
+std::string ShadingField::sampleVerdict(std::vector<Sample>& samples,
+  const std::array<std::int64_t, 3>& wholeDims)
 {
-  ShadingField f;
-  f.Gate = p.minimumGainRatio;
-  f.Why = "too few blocks of the volume above its zero to fit a shading";
-  for (std::size_t a = 0; a < 3; ++a)
-  {
-    f.Centre[a] = 0.5 * static_cast<double>(wholeDims[a] - 1);
-    f.HalfExtent[a] = std::max(1.0, f.Centre[a]);
-  }
   const std::int64_t voxels = wholeDims[0] * wholeDims[1] * wholeDims[2];
   // Values only (not a number is no evidence), inside the volume.
   samples.erase(std::remove_if(samples.begin(),
@@ -220,10 +192,9 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
     samples.end());
   if (samples.empty() || wholeDims[0] <= 0 || wholeDims[1] <= 0 || wholeDims[2] <= 0)
   {
-    return f;
+    return "too few blocks of the volume above its zero to fit a shading";
   }
-  // The model's zero is the image's own (an MR magnitude's, a CT's stored with air at 0, the
-  // phantom's). A sample of at most two values is a mask (or a single intensity): no shading.
+  // A sample of at most two values is a mask (or a single intensity).
   const double first = samples.front().value;
   double minimum = first, second = first;
   bool haveSecond = false, third = false;
@@ -239,88 +210,25 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
   }
   if (!third)
   {
-    f.Why = "a binary mask or a single intensity";
-    return f;
+    return "a binary mask or a single intensity";
   }
   if (minimum < 0.0)
   {
     // A CT in Hounsfield units (air -1000, padding to -3024) or a subtraction image: its zero
-    // is not the darkest tissue's, and the gain of a multiplicative model is not its shading.
-    f.Why = "the volume has negative intensities (a CT in Hounsfield units, a subtraction), "
-            "so a multiplicative shading does not apply";
-    return f;
+    // is not the darkest tissue's, and a multiplicative gain is not its shading.
+    return "the volume has negative intensities (a CT in Hounsfield units, a subtraction), so "
+           "a multiplicative shading does not apply";
   }
-  minimum = 0.0;
-  f.Minimum = minimum;
-  // The same sample in any order gives the same field (a single run's comes sorted).
-  const auto byIndex = [](const Sample& a, const Sample& b) { return a.linear < b.linear; };
-  if (!std::is_sorted(samples.begin(), samples.end(), byIndex))
-  {
-    std::sort(samples.begin(), samples.end(), byIndex);
-  }
-  // Blocks: edge e, at least minimumSamplesPerBlock lattice samples in a whole block.
-  const double perVoxel = 1.0 / static_cast<double>(std::max<std::uint64_t>(1, stride));
-  std::int64_t e = p.minimumBlockEdge_voxels;
-  while (static_cast<double>(e * e * e) * perVoxel < static_cast<double>(p.minimumSamplesPerBlock))
-  {
-    ++e;
-  }
-  std::array<std::int64_t, 3> nb{};
-  for (std::size_t a = 0; a < 3; ++a)
-  {
-    nb[a] = (wholeDims[a] + e - 1) / e;
-  }
-  std::vector<std::vector<double>> values(static_cast<std::size_t>(nb[0] * nb[1] * nb[2]));
-  for (const Sample& x : samples)
-  {
-    const auto l = static_cast<std::int64_t>(x.linear);
-    const std::int64_t i = l % wholeDims[0], j = (l / wholeDims[0]) % wholeDims[1],
-                       k = l / (wholeDims[0] * wholeDims[1]);
-    values[static_cast<std::size_t>((k / e * nb[1] + j / e) * nb[0] + i / e)].push_back(x.value);
-  }
-  std::vector<Block> blocks;
-  std::vector<double> levels;
-  for (std::size_t n = 0; n < values.size(); ++n)
-  {
-    const auto id = static_cast<std::int64_t>(n);
-    std::vector<double>& v = values[n];
-    if (v.size() < p.minimumSamplesPerBlock)
-    {
-      continue; // a thin remainder at the volume's face
-    }
-    const double median = quantile(v, 0.5);
-    if (!(median > minimum))
-    {
-      continue; // the volume's zero (padding, air): not shading
-    }
-    Block b;
-    const std::int64_t bi = id % nb[0], bj = (id / nb[0]) % nb[1], bk = id / (nb[0] * nb[1]);
-    const std::int64_t idx[3] = { bi, bj, bk };
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      const std::int64_t lo = idx[a] * e, hi = std::min(wholeDims[a], lo + e) - 1;
-      b.centre[a] = 0.5 * static_cast<double>(lo + hi);
-    }
-    b.logLevel = std::log(median - minimum);
-    b.weight = static_cast<double>(v.size());
-    blocks.push_back(b);
-    levels.push_back(median - minimum);
-  }
-  if (blocks.size() < 8)
-  {
-    return f;
-  }
-  // Blocks far below the typical one are air or lung, another tissue, not shading.
-  const double typical = quantile(levels, 0.5);
-  for (Block& b : blocks)
-  {
-    b.kept = std::exp(b.logLevel) >= 0.25 * typical;
-  }
-  // The terms the blocks' layers support (a linear term needs 2 layers, a quadratic 3).
+  return std::string();
+}
+
+int ShadingField::chooseTerms(const std::vector<ShadingBlock>& blocks)
+{
+  // A linear term needs 2 layers of kept blocks along its axis, a quadratic 3.
   const auto layers = [&blocks](std::size_t a)
   {
     std::vector<double> c;
-    for (const Block& b : blocks)
+    for (const ShadingBlock& b : blocks)
     {
       if (b.kept)
       {
@@ -331,7 +239,7 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
     return static_cast<int>(std::unique(c.begin(), c.end()) - c.begin());
   };
   const int n[3] = { layers(0), layers(1), layers(2) };
-  f.Used = { true,
+  this->Used = { true,
     n[0] >= 2,
     n[1] >= 2,
     n[2] >= 2,
@@ -341,82 +249,94 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
     n[0] >= 2 && n[1] >= 2,
     n[0] >= 2 && n[2] >= 2,
     n[1] >= 2 && n[2] >= 2 };
+  return static_cast<int>(std::count(this->Used.begin(), this->Used.end(), true));
+}
+
+bool ShadingField::leastSquares(const std::vector<ShadingBlock>& blocks, int minimumBlocks)
+{
   std::vector<int> used;
   for (int q = 0; q < kTerms; ++q)
   {
-    if (f.Used[static_cast<std::size_t>(q)])
+    if (this->Used[static_cast<std::size_t>(q)])
     {
       used.push_back(q);
     }
   }
   const int m = static_cast<int>(used.size());
+  const auto at = [](int v) { return static_cast<std::size_t>(v); };
+  std::vector<double> a(at(m * m), 0.0), rhs(at(m), 0.0);
+  int kept = 0;
+  for (const ShadingBlock& b : blocks)
+  {
+    if (!b.kept)
+    {
+      continue;
+    }
+    ++kept;
+    double u[3], t[kTerms];
+    for (std::size_t ax = 0; ax < 3; ++ax)
+    {
+      u[ax] = (b.centre[ax] - this->Centre[ax]) / this->HalfExtent[ax];
+    }
+    this->terms(u, t);
+    for (int r = 0; r < m; ++r)
+    {
+      for (int c = 0; c < m; ++c)
+      {
+        a[at(r * m + c)] += b.weight * t[used[at(r)]] * t[used[at(c)]];
+      }
+      rhs[at(r)] += b.weight * t[used[at(r)]] * b.logLevel;
+    }
+  }
+  std::vector<double> x;
+  if (kept < minimumBlocks || !solve(a, rhs, m, x))
+  {
+    return false;
+  }
+  this->Coefficients.fill(0.0);
+  for (int r = 0; r < m; ++r)
+  {
+    this->Coefficients[at(used[at(r)])] = x[at(r)];
+  }
+  return true;
+}
+
+bool ShadingField::fitRobustly(std::vector<ShadingBlock>& blocks, const Parameters& p)
+{
+  const int m = this->chooseTerms(blocks);
   bool fitted = false;
   for (int iteration = 0; iteration < p.fitIterations; ++iteration)
   {
-    std::vector<double> a(static_cast<std::size_t>(m * m), 0.0),
-      rhs(static_cast<std::size_t>(m), 0.0);
-    int kept = 0;
-    for (const Block& b : blocks)
-    {
-      if (!b.kept)
-      {
-        continue;
-      }
-      ++kept;
-      double u[3], t[kTerms];
-      for (std::size_t ax = 0; ax < 3; ++ax)
-      {
-        u[ax] = (b.centre[ax] - f.Centre[ax]) / f.HalfExtent[ax];
-      }
-      f.terms(u, t);
-      for (int r = 0; r < m; ++r)
-      {
-        for (int c = 0; c < m; ++c)
-        {
-          a[static_cast<std::size_t>(r * m + c)] +=
-            b.weight * t[used[static_cast<std::size_t>(r)]] * t[used[static_cast<std::size_t>(c)]];
-        }
-        rhs[static_cast<std::size_t>(r)] +=
-          b.weight * t[used[static_cast<std::size_t>(r)]] * b.logLevel;
-      }
-    }
-    std::vector<double> x;
-    if (kept < 3 * m || !solve(a, rhs, m, x))
+    if (!this->leastSquares(blocks, 3 * m))
     {
       break;
     }
-    f.Coefficients.fill(0.0);
-    for (int r = 0; r < m; ++r)
-    {
-      f.Coefficients[static_cast<std::size_t>(used[static_cast<std::size_t>(r)])] =
-        x[static_cast<std::size_t>(r)];
-    }
     fitted = true;
-    // Robust sigma of the residuals of the kept blocks; drop the far ones (of all the blocks
-    // above the air's level: a block dropped once may come back), and fit again.
+    // The kept blocks' residuals' robust sigma; the far blocks go (of every eligible block: a
+    // block dropped once may come back), and the fit is redone.
     std::vector<double> residuals;
-    for (const Block& b : blocks)
+    for (const ShadingBlock& b : blocks)
     {
       if (b.kept)
       {
-        residuals.push_back(b.logLevel - f.logGain(b.centre[0], b.centre[1], b.centre[2]));
+        residuals.push_back(b.logLevel - this->logGain(b.centre[0], b.centre[1], b.centre[2]));
       }
     }
-    const double centre = quantile(residuals, 0.5);
+    const double centre = ShadingBlocks::quantile(residuals, 0.5);
     for (double& r : residuals)
     {
       r = std::abs(r - centre);
     }
-    const double sigma = std::max(0.01, 1.4826 * quantile(residuals, 0.5));
+    const double sigma = std::max(0.01, 1.4826 * ShadingBlocks::quantile(residuals, 0.5));
     bool changed = false;
-    for (Block& b : blocks)
+    for (ShadingBlock& b : blocks)
     {
-      if (std::exp(b.logLevel) < 0.25 * typical)
+      if (!b.eligible)
       {
         continue;
       }
-      const bool keep = std::abs(b.logLevel - f.logGain(b.centre[0], b.centre[1], b.centre[2]) -
-                                 centre) <= p.rejectSigmas * sigma;
+      const double r = b.logLevel - this->logGain(b.centre[0], b.centre[1], b.centre[2]);
+      const bool keep = std::abs(r - centre) <= p.rejectSigmas * sigma;
       changed = changed || keep != b.kept;
       b.kept = keep;
     }
@@ -425,12 +345,44 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
       break;
     }
   }
-  if (!fitted)
+  return fitted &&
+         std::count_if(
+           blocks.begin(), blocks.end(), [](const ShadingBlock& b) { return b.kept; }) >= 3 * m;
+}
+
+ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
+  std::uint64_t stride,
+  std::vector<Sample> samples,
+  const Parameters& p)
+{
+  ShadingField f;
+  f.Gate = p.minimumGainRatio;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    f.Centre[a] = 0.5 * static_cast<double>(wholeDims[a] - 1);
+    f.HalfExtent[a] = std::max(1.0, f.Centre[a]);
+  }
+  f.Why = sampleVerdict(samples, wholeDims);
+  if (!f.Why.empty())
   {
     return f;
   }
+  f.Why = "too few blocks of the volume above its zero to fit a shading";
+  // The same sample in any order gives the same field (a single run's comes sorted).
+  const auto byIndex = [](const Sample& a, const Sample& b) { return a.linear < b.linear; };
+  if (!std::is_sorted(samples.begin(), samples.end(), byIndex))
+  {
+    std::sort(samples.begin(), samples.end(), byIndex);
+  }
+  std::vector<ShadingBlock> blocks = ShadingBlocks::levels(
+    wholeDims, stride, samples, p.minimumBlockEdge_voxels, p.minimumSamplesPerBlock);
+  if (blocks.size() < 8 || !f.fitRobustly(blocks, p))
+  {
+    return f;
+  }
+  f.Why.clear();
   std::vector<double> fittedLog;
-  for (const Block& b : blocks)
+  for (const ShadingBlock& b : blocks)
   {
     if (b.kept)
     {
@@ -439,15 +391,11 @@ ShadingField ShadingField::fit(const std::array<std::int64_t, 3>& wholeDims,
     }
   }
   f.BlocksUsed = static_cast<int>(fittedLog.size());
-  if (fittedLog.size() < static_cast<std::size_t>(3 * m))
-  {
-    return f;
-  }
-  f.Why.clear();
   std::vector<double> sorted = fittedLog;
-  const double p5 = quantile(sorted, 0.05), p95 = quantile(sorted, 0.95);
+  const double p5 = ShadingBlocks::quantile(sorted, 0.05);
+  const double p95 = ShadingBlocks::quantile(sorted, 0.95);
   f.GainRatio = std::exp(p95 - p5);
-  f.Reference = quantile(sorted, 0.5);
+  f.Reference = ShadingBlocks::quantile(sorted, 0.5);
   f.SpanLow = std::exp(*std::min_element(fittedLog.begin(), fittedLog.end()) - f.Reference);
   f.SpanHigh = std::exp(*std::max_element(fittedLog.begin(), fittedLog.end()) - f.Reference);
   f.Active = f.GainRatio >= p.minimumGainRatio;

@@ -33,6 +33,7 @@
 // gathers the same sample gets the same field (ShadingField::fit takes the sample, not a volume).
 #pragma once
 
+#include "vtouchShadingBlocks.h"
 #include "vtouchVolumeView.h"
 
 #include <algorithm>
@@ -61,11 +62,7 @@ class ShadingField
 public:
   using Parameters = ShadingFieldParameters;
   /// One voxel of the sample: its linear index in the whole volume and its intensity.
-  struct Sample
-  {
-    std::uint64_t linear = 0;
-    double value = 0.0;
-  };
+  using Sample = ShadingBlocks::Sample;
 
   /// The field fitted to `samples` (any order; sorted here) of a volume of `wholeDims`, drawn on
   /// the lattice of `stride`. Inactive (and summary() says why) for a sample of at most two values
@@ -116,6 +113,17 @@ private:
     }
   };
   RowRecurrence rowRecurrence(std::int64_t j, std::int64_t k) const;
+  /// Why `samples` cannot show a shading ("" when they can); drops the values that are not
+  /// finite or lie outside the volume.
+  static std::string sampleVerdict(std::vector<Sample>& samples,
+    const std::array<std::int64_t, 3>& wholeDims);
+  /// Sets Used to the terms the kept blocks' layers support; returns their number.
+  int chooseTerms(const std::vector<ShadingBlock>& blocks);
+  /// Weighted least squares of the kept blocks' log levels (false: fewer than `minimumBlocks`,
+  /// or singular).
+  bool leastSquares(const std::vector<ShadingBlock>& blocks, int minimumBlocks);
+  /// The fit, the far blocks dropped and the fit redone (Parameters::fitIterations at most).
+  bool fitRobustly(std::vector<ShadingBlock>& blocks, const Parameters& p);
   /// The polynomial's terms at normalised position u (each axis in [-1, 1] over the volume).
   void terms(const double u[3], double t[kTerms]) const;
   double logGain(double i, double j, double k) const;
