@@ -38,13 +38,10 @@ ShadingCorrection DistributedShading::run(vtkMultiProcessController* controller,
       origin[a] = e[2 * a] - whole[2 * a];
       dims[a] = e[2 * a + 1] - e[2 * a] + 1;
     }
-    withTypedScalars(scalars,
-      [&](const auto* voxels)
+    withVolumeView(scalars,
+      dims,
+      [&](const auto& view)
       {
-        using T = std::remove_const_t<std::remove_pointer_t<decltype(voxels)>>;
-        VolumeView<T> view;
-        view.voxels = voxels;
-        view.dims = dims;
         for (std::int64_t k = 0; k < dims[2]; ++k)
           for (std::int64_t j = 0; j < dims[1]; ++j)
           {
@@ -58,7 +55,6 @@ ShadingCorrection DistributedShading::run(vtkMultiProcessController* controller,
               lattice.push_back(view.at(static_cast<std::int64_t>(i), j, k));
             }
           }
-        return 0;
       });
   }
   const std::vector<std::vector<double>> pieces = c.allGather(lattice);

@@ -19,6 +19,8 @@
 #include "vtkSmartPointer.h"
 
 #include <string>
+#include <type_traits>
+#include <utility>
 
 namespace vtouch
 {
@@ -31,6 +33,26 @@ struct ShadingCorrection
   vtkSmartPointer<vtkDataArray> scalars;
   std::string summary;
 };
+
+/// Runs `run(view)` with `scalars` seen as a VolumeView of `dims` voxels of its own type (the
+/// types withTypedScalars wraps; one float copy for the others).
+template<typename Run>
+void withVolumeView(vtkDataArray* scalars, const std::array<std::int64_t, 3>& dims, Run&& run)
+{
+  withTypedScalars(scalars,
+    [&](const auto* voxels)
+    {
+      VolumeView<std::remove_const_t<std::remove_pointer_t<decltype(voxels)>>> view;
+      view.voxels = voxels;
+      view.dims = dims;
+      run(view);
+      return 0;
+    });
+}
+
+/// The voxel type of a VolumeView (withVolumeView's argument).
+template<typename View>
+using ViewVoxel = std::remove_const_t<std::remove_pointer_t<decltype(std::declval<View>().voxels)>>;
 
 /// `scalars` (one component, a piece of `dims` voxels whose first voxel is whole-volume voxel
 /// `origin`) corrected by `field`: the input's type (float for the types withTypedScalars copies).
@@ -53,15 +75,12 @@ inline vtkSmartPointer<vtkDataArray> correctedScalars(const ShadingField& field,
   corrected->SetNumberOfComponents(1);
   corrected->SetNumberOfTuples(scalars->GetNumberOfTuples());
   corrected->SetName(scalars->GetName());
-  withTypedScalars(scalars,
-    [&](const auto* voxels)
+  withVolumeView(scalars,
+    dims,
+    [&](const auto& view)
     {
-      using T = std::remove_const_t<std::remove_pointer_t<decltype(voxels)>>;
-      VolumeView<T> view;
-      view.voxels = voxels;
-      view.dims = dims;
+      using T = ViewVoxel<decltype(view)>;
       field.correct(view, origin, static_cast<T*>(corrected->GetVoidPointer(0)));
-      return 0;
     });
   return corrected;
 }
@@ -80,13 +99,10 @@ inline ShadingCorrection correctShading(vtkImageData* image,
   const std::array<std::int64_t, 3> dims{ d[0], d[1], d[2] };
   const std::array<std::int64_t, 3> seed =
     useSeed ? worldToIndex(image, seed_World_mm) : std::array<std::int64_t, 3>{ -1, -1, -1 };
-  withTypedScalars(scalars,
-    [&](const auto* voxels)
+  withVolumeView(scalars,
+    dims,
+    [&](const auto& view)
     {
-      using T = std::remove_const_t<std::remove_pointer_t<decltype(voxels)>>;
-      VolumeView<T> view;
-      view.voxels = voxels;
-      view.dims = dims;
       // fromVolume's sample lattice: no pass over the whole volume unless there is shading.
       const std::uint64_t stride = IntensityRangeEstimator::sampleStride(view.size());
       out.field = ShadingField::fit(dims, stride, ShadingField::sampleOf(view, stride));
@@ -94,7 +110,6 @@ inline ShadingCorrection correctShading(vtkImageData* image,
       {
         out.field.setReference(seed);
       }
-      return 0;
     });
   out.summary = out.field.summary();
   if (out.field.active())
