@@ -24,6 +24,10 @@ Measures: Utilities/bench/centerline_metrics.py. Keys (flat, units in the names)
                                       where that keeps more than 5 % of the volume, i.e. split
                                       the tissue, Otsu again above it: otsu_upper_cases counts them)
   centerline.raw.case.<tag>.<m>, centerline.raw.skimage.case.<tag>.<m>   every case
+  centerline.raw.shaded.<measure>, .shaded.case.<tag>.<m> (and .skimage.shaded.*)   the phantom
+                                      under a bias field of +/- 30 % and 50 % (quick: 50 % at
+                                      96^3), apart from the family; .case.<tag>.corrected: the
+                                      filter's ShadingCorrected
   centerline.raw.time_s               VesselCenterline's UpdatePipeline on the CTA-sized volume;
                                       centerline.raw.tubularity_s and .stage_<stage>_s its
                                       stages (the filter's Candidate<Stage>Seconds field data;
@@ -82,6 +86,17 @@ def phantom_cases(quick):
     return cases
 
 
+def shaded_cases(quick):
+    """The phantom under a strong bias field (a coil's or a body-long shading; the family has
+    +/- 10 %), which the filter's shading correction (Docs/CENTERLINES.md, "Raw angiograms",
+    step 0) divides out: measured apart from the family, scikit-image beside it."""
+    n, biases = (96, (0.5,)) if quick else (128, (0.3, 0.5))
+    return [{"tag": "shaded_n%d_s1_g20_b%g" % (n, b),
+             "phantom": {"Dimensions": [n, n, n], "Seed": 1, "NoiseStandardDeviation": 20,
+                         "AngiogramSegments": 100 if n < 128 else 200, "BiasAmplitude": b}}
+            for b in biases]
+
+
 def timing_case(quick):
     dims = [96, 96, 80] if quick else [512, 512, 400]
     return {"tag": "large", "phantom": {"Dimensions": dims, "Seed": 1, "NoiseStandardDeviation": 20,
@@ -126,7 +141,7 @@ def run(build, quick, tmp, log):
     workdir = os.path.join(tmp, "rawcenterline")
     os.makedirs(workdir, exist_ok=True)
     cta, reference = cta_case()
-    cases = phantom_cases(quick) + [timing_case(quick), cta]
+    cases = phantom_cases(quick) + shaded_cases(quick) + [timing_case(quick), cta]
     with open(os.path.join(workdir, "cases.json"), "w") as f:
         json.dump(cases, f)
     cmd = [os.path.join(ROOT, "Testing", "Utilities", "vtouch-xvfb-run"), "pvpython",
@@ -137,7 +152,7 @@ def run(build, quick, tmp, log):
     log("raw centerline extraction:\n" + text.rstrip())
 
     results, raw = {}, {"cases": {}}
-    per_case = {"vc": [], "skimage": []}
+    per_case = {"vc": [], "skimage": [], "shaded_vc": [], "shaded_skimage": []}
     for case in cases:
         tag = case["tag"]
         data = np.load(os.path.join(workdir, tag + ".npz"))
@@ -187,6 +202,14 @@ def run(build, quick, tmp, log):
                 for k in ("precision", "recall_r0.5_up", "recall_r1_up", "mean_dist_vox",
                           "false_vessel_points"):
                     results["centerline.raw.large.%s" % k] = vc[k]
+            elif tag.startswith("shaded_"):
+                per_case["shaded_vc"].append(vc)
+                per_case["shaded_skimage"].append(sk)
+                for k in AGGREGATE:
+                    results["centerline.raw.shaded.case.%s.%s" % (tag, k)] = vc[k]
+                    results["centerline.raw.skimage.shaded.case.%s.%s" % (tag, k)] = sk[k]
+                results["centerline.raw.shaded.case.%s.corrected" % tag] = record.get(
+                    "field.ShadingCorrected", [math.nan])[0]
             else:
                 per_case["vc"].append(vc)
                 per_case["skimage"].append(sk)
@@ -203,7 +226,9 @@ def run(build, quick, tmp, log):
                     sk["false_vessel_points"]))
         raw["cases"][tag] = row
         os.remove(os.path.join(workdir, tag + ".npz"))
-    for who, prefix in (("vc", "centerline.raw."), ("skimage", "centerline.raw.skimage.")):
+    for who, prefix in (("vc", "centerline.raw."), ("skimage", "centerline.raw.skimage."),
+                        ("shaded_vc", "centerline.raw.shaded."),
+                        ("shaded_skimage", "centerline.raw.skimage.shaded.")):
         for k, fold in AGGREGATE.items():
             values = [c[k] for c in per_case[who] if not math.isnan(c[k])]
             results[prefix + k] = float(fold(values)) if values else math.nan
